@@ -1,0 +1,221 @@
+//! Plane geometry of the domain: points, triangles and barycentric coordinates.
+
+use nalgebra::{Point2, Vector2};
+
+/// Barycentric coordinates (τ1, τ2, τ3) of a point, or a barycentric direction (d1, d2, d3)
+/// with d1 + d2 + d3 = 0 (thesis Definitions 2.1 and 2.3).
+pub type Bary = [f64; 3];
+
+/// A triangle in the domain plane, vertices V1, V2, V3.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle2 {
+    /// The three vertices.
+    pub v: [Point2<f64>; 3],
+}
+
+/// The affine map from Cartesian (x, y) to barycentric coordinates of one triangle:
+/// τ_i = c_i + g_i · (x, y).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BaryMap {
+    /// Constant terms c_i.
+    pub c: [f64; 3],
+    /// Gradients g_i = ∂τ_i/∂(x, y); the x-column is the unit direction d_x of (2.18),
+    /// the y-column d_y of (2.19).
+    pub g: [Vector2<f64>; 3],
+}
+
+impl BaryMap {
+    /// Barycentric coordinates of `p`.
+    #[inline]
+    pub fn apply(&self, p: Point2<f64>) -> Bary {
+        [
+            self.c[0] + self.g[0].x * p.x + self.g[0].y * p.y,
+            self.c[1] + self.g[1].x * p.x + self.g[1].y * p.y,
+            self.c[2] + self.g[2].x * p.x + self.g[2].y * p.y,
+        ]
+    }
+    /// The barycentric direction of the x-axis, d_x of (2.18).
+    #[inline]
+    pub fn dx(&self) -> Bary {
+        [self.g[0].x, self.g[1].x, self.g[2].x]
+    }
+    /// The barycentric direction of the y-axis, d_y of (2.19).
+    #[inline]
+    pub fn dy(&self) -> Bary {
+        [self.g[0].y, self.g[1].y, self.g[2].y]
+    }
+}
+
+impl Triangle2 {
+    /// The triangle with vertices `a`, `b`, `c`.
+    pub fn new(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>) -> Self {
+        Triangle2 { v: [a, b, c] }
+    }
+
+    /// The determinant e of (2.20): twice the signed area, positive for counter-clockwise.
+    #[inline]
+    pub fn det(&self) -> f64 {
+        cross(self.v[1] - self.v[0], self.v[2] - self.v[0])
+    }
+
+    /// The (unsigned) area A = |e| / 2 of (2.22).
+    pub fn area(&self) -> f64 {
+        self.det().abs() * 0.5
+    }
+
+    /// The longest edge length.
+    pub fn diameter(&self) -> f64 {
+        (0..3)
+            .map(|i| (self.v[(i + 1) % 3] - self.v[i]).norm())
+            .fold(0.0, f64::max)
+    }
+
+    /// True when the area is tiny relative to the squared longest edge
+    /// (the triangle is numerically a segment or a point).
+    pub fn is_degenerate(&self) -> bool {
+        let h = self.diameter();
+        !(self.det().abs() > 1e-12 * h * h) || !h.is_finite()
+    }
+
+    /// The affine map to barycentric coordinates, solving (2.1). `None` if degenerate.
+    pub fn bary_map(&self) -> Option<BaryMap> {
+        let e = self.det();
+        if self.is_degenerate() {
+            return None;
+        }
+        let [a, b, c] = self.v;
+        // τ1 = ((y2 − y3) x + (x3 − x2) y + x2 y3 − x3 y2) / e, and cyclically.
+        let g = [
+            Vector2::new(b.y - c.y, c.x - b.x) / e,
+            Vector2::new(c.y - a.y, a.x - c.x) / e,
+            Vector2::new(a.y - b.y, b.x - a.x) / e,
+        ];
+        let c0 = (b.x * c.y - c.x * b.y) / e;
+        let c1 = (c.x * a.y - a.x * c.y) / e;
+        let c2 = (a.x * b.y - b.x * a.y) / e;
+        Some(BaryMap { c: [c0, c1, c2], g })
+    }
+
+    /// Barycentric coordinates of `p` (2.1), computed from sub-areas for accuracy.
+    /// Returns NaNs for a degenerate triangle.
+    pub fn bary(&self, p: Point2<f64>) -> Bary {
+        let e = self.det();
+        let [a, b, c] = self.v;
+        let t0 = cross(b - p, c - p) / e;
+        let t1 = cross(c - p, a - p) / e;
+        [t0, t1, 1.0 - t0 - t1]
+    }
+
+    /// The point with barycentric coordinates `t`.
+    #[inline]
+    pub fn point(&self, t: Bary) -> Point2<f64> {
+        let [a, b, c] = self.v;
+        Point2::new(
+            t[0] * a.x + t[1] * b.x + t[2] * c.x,
+            t[0] * a.y + t[1] * b.y + t[2] * c.y,
+        )
+    }
+
+    /// The incentre: the vertices weighted by the lengths of the opposite edges.
+    pub fn incenter(&self) -> Point2<f64> {
+        let [a, b, c] = self.v;
+        let la = (c - b).norm();
+        let lb = (a - c).norm();
+        let lc = (b - a).norm();
+        let s = la + lb + lc;
+        self.point([la / s, lb / s, lc / s])
+    }
+
+    /// The centroid.
+    pub fn centroid(&self) -> Point2<f64> {
+        self.point([1.0 / 3.0; 3])
+    }
+}
+
+/// The 2-D cross product (z-component of the 3-D cross product).
+#[inline]
+pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// Twice the signed area of the triangle (a, b, c): positive when counter-clockwise.
+#[inline]
+pub fn orient(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>) -> f64 {
+    cross(b - a, c - a)
+}
+
+/// The midpoint of a and b.
+#[inline]
+pub fn midpoint(a: Point2<f64>, b: Point2<f64>) -> Point2<f64> {
+    Point2::new(0.5 * (a.x + b.x), 0.5 * (a.y + b.y))
+}
+
+/// The barycentric direction from point `from` to point `to`, w.r.t. a triangle's map.
+pub fn bary_direction(map: &BaryMap, v: Vector2<f64>) -> Bary {
+    [map.g[0].dot(&v), map.g[1].dot(&v), map.g[2].dot(&v)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri() -> Triangle2 {
+        Triangle2::new(
+            Point2::new(0.3, -0.2),
+            Point2::new(2.1, 0.4),
+            Point2::new(0.7, 1.9),
+        )
+    }
+
+    #[test]
+    fn bary_map_agrees_with_sub_areas_and_reproduces_points() {
+        let t = tri();
+        let m = t.bary_map().unwrap();
+        for p in [
+            Point2::new(0.9, 0.5),
+            Point2::new(-3.0, 7.0),
+            Point2::new(0.3, -0.2),
+        ] {
+            let a = m.apply(p);
+            let b = t.bary(p);
+            for i in 0..3 {
+                assert!((a[i] - b[i]).abs() < 1e-14);
+            }
+            assert!((a.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+            let q = t.point(a);
+            assert!((q - p).norm() < 1e-13);
+        }
+        // The directions sum to zero and map the unit x-vector (Definition 2.3, (2.18)).
+        let dx = m.dx();
+        assert!(dx.iter().sum::<f64>().abs() < 1e-15);
+        let moved = t.point([
+            m.apply(Point2::origin())[0] + dx[0],
+            m.apply(Point2::origin())[1] + dx[1],
+            m.apply(Point2::origin())[2] + dx[2],
+        ]);
+        assert!((moved - Point2::new(1.0, 0.0)).norm() < 1e-13);
+    }
+
+    #[test]
+    fn incenter_is_equidistant_from_the_edges() {
+        let t = tri();
+        let z = t.incenter();
+        let dist = |a: Point2<f64>, b: Point2<f64>| orient(a, b, z).abs() / (b - a).norm();
+        let d0 = dist(t.v[0], t.v[1]);
+        let d1 = dist(t.v[1], t.v[2]);
+        let d2 = dist(t.v[2], t.v[0]);
+        assert!((d0 - d1).abs() < 1e-14 && (d1 - d2).abs() < 1e-14);
+    }
+
+    #[test]
+    fn degenerate_triangles_are_detected() {
+        let t = Triangle2::new(
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(2.0, 2.0 + 1e-15),
+        );
+        assert!(t.is_degenerate());
+        assert!(t.bary_map().is_none());
+        assert!(!tri().is_degenerate());
+    }
+}
