@@ -18,6 +18,7 @@ pub(crate) mod test_util;
 pub mod bezier;
 pub mod geometry;
 pub mod quadrature;
+pub mod triangulation;
 pub mod vector;
 
 /// The most used types in one import.

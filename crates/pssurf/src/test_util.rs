@@ -73,3 +73,123 @@ macro_rules! assert_near {
         );
     }};
 }
+
+/// A catalogue of test triangulations grouped by the property they stress.
+pub mod meshes {
+    use super::*;
+    use crate::triangulation::Triangulation;
+
+    /// Delaunay triangulation of uniform random points in the unit square (slivers at the hull).
+    pub fn uniform_square(r: &mut ChaCha8Rng, n: usize) -> Triangulation {
+        let pts = (0..n)
+            .map(|_| Point2::new(uniform(r, 0.0, 1.0), uniform(r, 0.0, 1.0)))
+            .collect();
+        Triangulation::delaunay(pts).unwrap()
+    }
+
+    /// Points stretched 50:1 in x: many thin triangles.
+    pub fn thin(r: &mut ChaCha8Rng, n: usize) -> Triangulation {
+        let pts = (0..n)
+            .map(|_| Point2::new(uniform(r, 0.0, 5.0), uniform(r, 0.0, 0.1)))
+            .collect();
+        Triangulation::delaunay(pts).unwrap()
+    }
+
+    /// Many points on a circle and few inside: most vertices on the boundary.
+    pub fn boundary_heavy(r: &mut ChaCha8Rng, n: usize) -> Triangulation {
+        let mut pts: Vec<Point2<f64>> = (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * (k as f64 + uniform(r, 0.0, 0.5)) / n as f64;
+                Point2::new(a.cos(), a.sin())
+            })
+            .collect();
+        for _ in 0..n / 8 {
+            let (a, rad) = (uniform(r, 0.0, std::f64::consts::TAU), uniform(r, 0.0, 0.8));
+            pts.push(Point2::new(rad * a.cos(), rad * a.sin()));
+        }
+        Triangulation::delaunay(pts).unwrap()
+    }
+
+    /// A jittered k × k grid with random diagonals: a valid, generally non-Delaunay
+    /// triangulation given explicitly.
+    pub fn structured(r: &mut ChaCha8Rng, k: usize) -> Triangulation {
+        let mut pts = Vec::new();
+        for j in 0..=k {
+            for i in 0..=k {
+                let jit = |r: &mut ChaCha8Rng, on_edge: bool| {
+                    if on_edge {
+                        0.0
+                    } else {
+                        uniform(r, -0.25, 0.25)
+                    }
+                };
+                let (ei, ej) = (i == 0 || i == k, j == 0 || j == k);
+                pts.push(Point2::new(i as f64 + jit(r, ei), j as f64 + jit(r, ej)));
+            }
+        }
+        let id = |i: usize, j: usize| j * (k + 1) + i;
+        let mut tris = Vec::new();
+        for j in 0..k {
+            for i in 0..k {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                if uniform(r, 0.0, 1.0) < 0.5 {
+                    tris.push([a, b, c]);
+                    tris.push([a, c, d]);
+                } else {
+                    tris.push([a, b, d]);
+                    tris.push([b, c, d]);
+                }
+            }
+        }
+        Triangulation::new(pts, tris)
+    }
+
+    /// A non-convex L-shaped domain with a jittered interior (walks may hit the boundary).
+    pub fn l_shape(r: &mut ChaCha8Rng, k: usize) -> Triangulation {
+        let full = structured(r, k);
+        let half = k as f64 / 2.0;
+        let keep: Vec<[usize; 3]> = full
+            .triangles()
+            .iter()
+            .filter(|t| {
+                let c = t.iter().fold(Point2::origin(), |acc: Point2<f64>, &v| {
+                    acc + full.vertex(v as usize).coords / 3.0
+                });
+                !(c.x > half && c.y > half)
+            })
+            .map(|t| t.map(|v| v as usize))
+            .collect();
+        compact(full.vertices(), &keep)
+    }
+
+    /// Drops unused vertices and renumbers.
+    pub fn compact(vertices: &[Point2<f64>], tris: &[[usize; 3]]) -> Triangulation {
+        let mut map = vec![usize::MAX; vertices.len()];
+        let mut verts = Vec::new();
+        let tris = tris
+            .iter()
+            .map(|t| {
+                t.map(|v| {
+                    if map[v] == usize::MAX {
+                        map[v] = verts.len();
+                        verts.push(vertices[v]);
+                    }
+                    map[v]
+                })
+            })
+            .collect();
+        Triangulation::new(verts, tris)
+    }
+
+    /// One of each kind, for sweeping a property over the whole catalogue.
+    pub fn catalogue(seed: u64) -> Vec<(&'static str, Triangulation)> {
+        let mut r = rng(seed);
+        vec![
+            ("uniform", uniform_square(&mut r, 60)),
+            ("thin", thin(&mut r, 50)),
+            ("boundary-heavy", boundary_heavy(&mut r, 40)),
+            ("structured", structured(&mut r, 6)),
+            ("l-shape", l_shape(&mut r, 6)),
+        ]
+    }
+}

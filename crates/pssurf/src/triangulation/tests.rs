@@ -1,0 +1,181 @@
+//! Tests of triangulation validation, adjacency and point location.
+
+use nalgebra::Point2;
+
+use super::*;
+use crate::test_util::meshes::{catalogue, compact};
+use crate::test_util::*;
+
+fn p(x: f64, y: f64) -> Point2<f64> {
+    Point2::new(x, y)
+}
+
+#[test]
+fn adjacency_is_symmetric_and_euler_holds() {
+    for seed in 0..5 {
+        for (name, t) in catalogue(seed) {
+            for s in 0..t.triangle_count() {
+                for i in 0..3 {
+                    let (a, b) = t.edge_vertices(s, i);
+                    if let Some(n) = t.neighbor(s, i) {
+                        // The neighbour has the reversed edge and points back.
+                        let j = (0..3)
+                            .find(|&j| t.edge_vertices(n, j) == (b, a))
+                            .expect(name);
+                        assert_eq!(t.neighbor(n, j), Some(s), "{name}");
+                    } else {
+                        assert!(t.is_boundary_vertex(a) && t.is_boundary_vertex(b));
+                    }
+                }
+            }
+            // Simply connected domains: V − E + T = 1.
+            let euler = t.vertex_count() as i64 - t.edge_count() as i64 + t.triangle_count() as i64;
+            assert_eq!(euler, 1, "{name}");
+            let total: usize = (0..t.vertex_count()).map(|v| t.molecule_number(v)).sum();
+            assert_eq!(total, 3 * t.triangle_count());
+            for v in 0..t.vertex_count() {
+                for &s in t.molecule(v) {
+                    assert!(t.corner_of(s as usize, v).is_some());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn point_location_finds_the_containing_triangle() {
+    let mut r = rng(20);
+    for (name, t) in catalogue(3) {
+        let (lo, hi) = t.bounds();
+        let mut hint = 0;
+        let mut inside = 0;
+        for _ in 0..2000 {
+            let q = p(uniform(&mut r, lo.x, hi.x), uniform(&mut r, lo.y, hi.y));
+            let a = t.locate(q);
+            let b = t.locate_from(q, hint);
+            // Brute force: the truth.
+            let truth =
+                (0..t.triangle_count()).find(|&s| t.bary(s, q).iter().all(|&x| x >= -1e-12));
+            assert_eq!(a.is_some(), truth.is_some(), "{name} {q:?}");
+            assert_eq!(b.is_some(), truth.is_some(), "{name} {q:?}");
+            if let (Some(a), Some(b)) = (a, b) {
+                inside += 1;
+                for loc in [a, b] {
+                    assert!(loc.bary.iter().all(|&x| x >= -INSIDE_TOLERANCE));
+                    let back = t.triangle_geometry(loc.triangle).point(loc.bary);
+                    assert!((back - q).norm() < 1e-12, "{name}");
+                }
+                hint = b.triangle;
+            }
+        }
+        assert!(inside > 500, "{name}: too few inside points ({inside})");
+        // Vertices and edge midpoints are found (they lie on several triangles).
+        for v in 0..t.vertex_count() {
+            assert!(t.locate(t.vertex(v)).is_some(), "{name} vertex {v}");
+        }
+    }
+}
+
+#[test]
+fn clockwise_input_is_reoriented() {
+    let v = vec![p(0., 0.), p(1., 0.), p(0., 1.), p(1., 1.)];
+    let t = Triangulation::new(v, vec![[0, 2, 1], [1, 2, 3]]);
+    for s in 0..2 {
+        assert!(t.triangle_geometry(s).det() > 0.0);
+    }
+    assert_eq!(
+        t.neighbor(0, 0).is_some() || t.neighbor(0, 1).is_some() || t.neighbor(0, 2).is_some(),
+        true
+    );
+}
+
+#[test]
+fn bad_triangulations_are_rejected_with_the_offending_element() {
+    use TriangulationError as E;
+    // An interior vertex whose fan winds twice (a pentagram of five 144° triangles).
+    let mut v = vec![p(0., 0.)];
+    for k in 0..5 {
+        let a = (144.0 * k as f64).to_radians();
+        v.push(p(a.cos(), a.sin()));
+    }
+    let tris: Vec<_> = (0..5).map(|k| [0, 1 + k, 1 + (k + 1) % 5]).collect();
+    let e = Triangulation::try_new(v, tris).unwrap_err();
+    assert!(matches!(e, E::NonConforming { .. }), "{e}");
+    assert!(e.to_string().contains("around vertex 0"), "{e}");
+
+    // Two triangles on the same side of an edge.
+    let v2 = vec![p(0., 0.), p(2., 0.), p(1., 1.), p(1., 0.5)];
+    let e = Triangulation::try_new(v2, vec![[0, 1, 2], [0, 1, 3]]).unwrap_err();
+    assert!(matches!(e, E::NonConforming { triangle: 1, .. }), "{e}");
+
+    // A bow-tie: two triangles touching at vertex 0 only.
+    let v3 = vec![p(0., 0.), p(1., 0.), p(1., 1.), p(-1., 0.), p(-1., -1.)];
+    let e = Triangulation::try_new(v3, vec![[0, 1, 2], [0, 3, 4]]).unwrap_err();
+    assert_eq!(e, E::NonManifoldVertex { vertex: 0 });
+
+    // Separate triangles whose boundaries cross.
+    let v4 = vec![
+        p(0., 0.),
+        p(2., 0.),
+        p(1., 2.),
+        p(0., 1.),
+        p(2., 1.),
+        p(1., -1.),
+    ];
+    let e = Triangulation::try_new(v4, vec![[0, 1, 2], [3, 5, 4]]).unwrap_err();
+    assert!(matches!(e, E::NonConforming { .. }), "{e}");
+    assert!(e.to_string().contains("cross"), "{e}");
+
+    // An edge shared by three triangles.
+    let v5 = vec![p(0., 0.), p(1., 0.), p(0.5, 1.), p(0.5, -1.), p(0.5, 2.)];
+    let e = Triangulation::try_new(v5, vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]]).unwrap_err();
+    assert!(
+        matches!(e, E::NonConforming { .. } | E::NonManifoldEdge { .. }),
+        "{e}"
+    );
+
+    // A Delaunay triangulation of collinear or coincident points.
+    assert_eq!(
+        Triangulation::delaunay(vec![p(0., 0.), p(1., 1.), p(2., 2.)]).unwrap_err(),
+        E::CollinearPoints
+    );
+    assert_eq!(
+        Triangulation::delaunay(vec![p(0., 0.), p(1., 0.), p(0., 1.), p(0., 0.)]).unwrap_err(),
+        E::DuplicateVertex {
+            first: 0,
+            second: 3
+        }
+    );
+}
+
+#[test]
+fn non_convex_domains_locate_across_the_notch() {
+    // An L-shape: walking from one arm towards the other hits the boundary; the R-tree fallback
+    // must still find the point.
+    let v = vec![
+        p(0., 0.),
+        p(2., 0.),
+        p(2., 1.),
+        p(1., 1.),
+        p(1., 2.),
+        p(0., 2.),
+        p(1., 0.),
+        p(0., 1.),
+    ];
+    let t = compact(
+        &v,
+        &[
+            [0, 6, 3],
+            [6, 1, 2],
+            [6, 2, 3],
+            [0, 3, 7],
+            [7, 3, 4],
+            [7, 4, 5],
+        ],
+    );
+    let start = t.locate(p(1.9, 0.1)).unwrap().triangle;
+    let far = t.locate_from(p(0.1, 1.9), start).unwrap();
+    assert!(far.bary.iter().all(|&x| x >= 0.0));
+    assert!(t.locate(p(1.5, 1.5)).is_none(), "the notch is outside");
+    assert!(t.locate_from(p(1.5, 1.5), start).is_none());
+}

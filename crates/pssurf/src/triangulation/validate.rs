@@ -1,0 +1,352 @@
+//! Validation and construction of the adjacency structure.
+
+use std::f64::consts::TAU;
+use std::sync::OnceLock;
+
+use nalgebra::Point2;
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{AABB, RTree};
+
+use super::{NO_NEIGHBOR, Triangulation, TriangulationError};
+use crate::geometry::{Triangle2, orient};
+
+type E = TriangulationError;
+
+/// Validates the input and builds the triangulation (see [`Triangulation::try_new`]).
+pub(super) fn build(
+    vertices: Vec<Point2<f64>>,
+    triangles: Vec<[usize; 3]>,
+) -> Result<Triangulation, TriangulationError> {
+    if triangles.is_empty() {
+        return Err(E::NoTriangles);
+    }
+    let n = vertices.len();
+    if n >= NO_NEIGHBOR as usize || triangles.len() >= NO_NEIGHBOR as usize {
+        return Err(E::TooLarge(n.max(triangles.len())));
+    }
+    if let Some(i) = vertices
+        .iter()
+        .position(|v| !(v.x.is_finite() && v.y.is_finite()))
+    {
+        return Err(E::NonFiniteVertex(i));
+    }
+    check_duplicates(&vertices)?;
+    let mut tris = check_triangles(&vertices, &triangles)?;
+    orient_counter_clockwise(&vertices, &mut tris)?;
+    let (offsets, list) = molecules(n, &tris)?;
+    let neighbors = adjacency(&tris, &offsets, &list)?;
+    let mut t = Triangulation {
+        vertices,
+        triangles: tris,
+        neighbors,
+        molecule_offsets: offsets,
+        molecule_list: list,
+        on_boundary: vec![false; n],
+        locator: OnceLock::new(),
+    };
+    mark_boundary(&mut t);
+    check_vertex_angles(&t)?;
+    check_boundary_crossings(&t)?;
+    check_bow_ties(&t)?;
+    Ok(t)
+}
+
+pub(super) fn check_duplicates(vertices: &[Point2<f64>]) -> Result<(), E> {
+    let mut order: Vec<usize> = (0..vertices.len()).collect();
+    order.sort_unstable_by(|&a, &b| {
+        vertices[a]
+            .x
+            .total_cmp(&vertices[b].x)
+            .then(vertices[a].y.total_cmp(&vertices[b].y))
+            .then(a.cmp(&b))
+    });
+    for w in order.windows(2) {
+        if vertices[w[0]] == vertices[w[1]] {
+            return Err(E::DuplicateVertex {
+                first: w[0].min(w[1]),
+                second: w[0].max(w[1]),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn check_triangles(vertices: &[Point2<f64>], triangles: &[[usize; 3]]) -> Result<Vec<[u32; 3]>, E> {
+    let n = vertices.len();
+    let mut out = Vec::with_capacity(triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        if let Some(&index) = tri.iter().find(|&&i| i >= n) {
+            return Err(E::IndexOutOfRange {
+                triangle: t,
+                index,
+                vertex_count: n,
+            });
+        }
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            return Err(E::RepeatedVertex { triangle: t });
+        }
+        let g = Triangle2::new(vertices[tri[0]], vertices[tri[1]], vertices[tri[2]]);
+        if g.is_degenerate() {
+            return Err(E::DegenerateTriangle { triangle: t });
+        }
+        out.push(tri.map(|i| i as u32));
+    }
+    Ok(out)
+}
+
+fn orient_counter_clockwise(vertices: &[Point2<f64>], tris: &mut [[u32; 3]]) -> Result<(), E> {
+    let sign = |t: &[u32; 3]| {
+        orient(
+            vertices[t[0] as usize],
+            vertices[t[1] as usize],
+            vertices[t[2] as usize],
+        ) > 0.0
+    };
+    let first = sign(&tris[0]);
+    if let Some(t) = tris.iter().position(|t| sign(t) != first) {
+        return Err(E::InconsistentOrientation {
+            triangle: t,
+            first: 0,
+        });
+    }
+    if !first {
+        for t in tris.iter_mut() {
+            t.swap(1, 2);
+        }
+    }
+    Ok(())
+}
+
+/// The vertex → triangles incidence in compressed form; fails on unused vertices.
+fn molecules(n: usize, tris: &[[u32; 3]]) -> Result<(Vec<u32>, Vec<u32>), E> {
+    let mut offsets = vec![0u32; n + 1];
+    for t in tris {
+        for &v in t {
+            offsets[v as usize + 1] += 1;
+        }
+    }
+    if let Some(i) = (0..n).find(|&i| offsets[i + 1] == 0) {
+        return Err(E::UnusedVertex(i));
+    }
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut fill = offsets.clone();
+    let mut list = vec![0u32; 3 * tris.len()];
+    for (t, tri) in tris.iter().enumerate() {
+        for &v in tri {
+            list[fill[v as usize] as usize] = t as u32;
+            fill[v as usize] += 1;
+        }
+    }
+    Ok((offsets, list))
+}
+
+/// Neighbours across each edge; detects duplicate triangles, edges in more than two
+/// triangles and triangles on the same side of an edge.
+fn adjacency(tris: &[[u32; 3]], offsets: &[u32], list: &[u32]) -> Result<Vec<[u32; 3]>, E> {
+    let mut neighbors = vec![[NO_NEIGHBOR; 3]; tris.len()];
+    for (t, tri) in tris.iter().enumerate() {
+        for i in 0..3 {
+            let (a, b) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            let mol = &list[offsets[a as usize] as usize..offsets[a as usize + 1] as usize];
+            for &s in mol {
+                let s = s as usize;
+                if s == t {
+                    continue;
+                }
+                let other = tris[s];
+                let Some(j) = other.iter().position(|&x| x == b) else {
+                    continue;
+                };
+                let mut sorted_t = *tri;
+                let mut sorted_s = other;
+                sorted_t.sort_unstable();
+                sorted_s.sort_unstable();
+                if sorted_t == sorted_s {
+                    return Err(E::DuplicateTriangle {
+                        triangle: t.max(s),
+                        first: t.min(s),
+                    });
+                }
+                // In s the edge must run b → a (opposite direction).
+                let same_direction = other[(j + 2) % 3] == a;
+                if same_direction {
+                    return Err(E::NonConforming {
+                        triangle: t.max(s),
+                        detail: format!(
+                            "triangles {} and {} lie on the same side of their common edge ({a}, {b}), so they overlap",
+                            t.min(s),
+                            t.max(s)
+                        ),
+                    });
+                }
+                if neighbors[t][i] != NO_NEIGHBOR && neighbors[t][i] as usize != s {
+                    return Err(E::NonManifoldEdge {
+                        triangle: t,
+                        a: a as usize,
+                        b: b as usize,
+                    });
+                }
+                neighbors[t][i] = s as u32;
+            }
+        }
+    }
+    Ok(neighbors)
+}
+
+fn mark_boundary(t: &mut Triangulation) {
+    for tri in 0..t.triangles.len() {
+        for i in 0..3 {
+            if t.neighbors[tri][i] == NO_NEIGHBOR {
+                let (a, b) = t.edge_vertices(tri, i);
+                t.on_boundary[a] = true;
+                t.on_boundary[b] = true;
+            }
+        }
+    }
+}
+
+/// The number of boundary edges at vertex `v` and the total angle of its triangles there.
+fn fan(t: &Triangulation, v: usize) -> (usize, f64) {
+    let mut boundary_edges = 0;
+    let mut angle = 0.0;
+    for &s in t.molecule(v) {
+        let s = s as usize;
+        let c = t.corner_of(s, v).expect("molecule triangle has the vertex");
+        // The two edges of s at v are opposite corners c+1 and c+2.
+        for e in [(c + 1) % 3, (c + 2) % 3] {
+            if t.is_boundary_edge(s, e) {
+                boundary_edges += 1;
+            }
+        }
+        let [a, b] = [t.triangle(s)[(c + 1) % 3], t.triangle(s)[(c + 2) % 3]];
+        let (u, w) = (t.vertex(a) - t.vertex(v), t.vertex(b) - t.vertex(v));
+        angle += crate::geometry::cross(u, w).atan2(u.dot(&w));
+    }
+    (boundary_edges, angle)
+}
+
+/// The angles of a vertex's triangles must add up to 2π around an interior vertex and to
+/// less than 2π at a boundary vertex; otherwise the triangles wind around it more than once.
+fn check_vertex_angles(t: &Triangulation) -> Result<(), E> {
+    for v in 0..t.vertex_count() {
+        let (boundary_edges, angle) = fan(t, v);
+        let tol = 1e-9 * TAU;
+        let bad = if boundary_edges == 0 {
+            (angle - TAU).abs() > tol
+        } else {
+            angle > TAU + tol
+        };
+        if bad {
+            return Err(E::NonConforming {
+                triangle: t.molecule(v)[0] as usize,
+                detail: format!(
+                    "the triangles around vertex {v} cover an angle of {:.6}π instead of {}, so they overlap",
+                    angle / std::f64::consts::PI,
+                    if boundary_edges == 0 {
+                        "2π"
+                    } else {
+                        "less than 2π"
+                    }
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// A vertex whose fan has more than one gap joins parts that touch at a point (a bow-tie).
+fn check_bow_ties(t: &Triangulation) -> Result<(), E> {
+    match (0..t.vertex_count()).find(|&v| fan(t, v).0 > 2) {
+        Some(vertex) => Err(E::NonManifoldVertex { vertex }),
+        None => Ok(()),
+    }
+}
+
+/// Boundary edges may meet only at shared end points: a crossing, a touching, or a vertex in
+/// the middle of another boundary edge (a hanging node) makes the triangulation non-conforming.
+fn check_boundary_crossings(t: &Triangulation) -> Result<(), E> {
+    let edges: Vec<(usize, usize, usize)> = t
+        .boundary_edges()
+        .map(|(tri, i)| {
+            let (a, b) = t.edge_vertices(tri, i);
+            (tri, a, b)
+        })
+        .collect();
+    let (lo, hi) = t.bounds();
+    let pad = 1e-12 * (hi - lo).norm();
+    let tree = RTree::bulk_load(
+        edges
+            .iter()
+            .enumerate()
+            .map(|(k, &(_, a, b))| {
+                let (pa, pb) = (t.vertex(a), t.vertex(b));
+                let rect = Rectangle::from_corners(
+                    [pa.x.min(pb.x) - pad, pa.y.min(pb.y) - pad],
+                    [pa.x.max(pb.x) + pad, pa.y.max(pb.y) + pad],
+                );
+                GeomWithData::new(rect, k)
+            })
+            .collect(),
+    );
+    for (k, &(tri, a, b)) in edges.iter().enumerate() {
+        let (pa, pb) = (t.vertex(a), t.vertex(b));
+        let env = AABB::from_corners(
+            [pa.x.min(pb.x) - pad, pa.y.min(pb.y) - pad],
+            [pa.x.max(pb.x) + pad, pa.y.max(pb.y) + pad],
+        );
+        for other in tree.locate_in_envelope_intersecting(env) {
+            let l = other.data;
+            if l <= k {
+                continue;
+            }
+            let (tri2, c, d) = edges[l];
+            if let Some(detail) = segments_conflict(t, (a, b), (c, d)) {
+                return Err(E::NonConforming {
+                    triangle: tri.min(tri2),
+                    detail: format!(
+                        "boundary edges ({a}, {b}) of triangle {tri} and ({c}, {d}) of triangle {tri2}: {detail}"
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Why two boundary segments conflict, if they do.
+fn segments_conflict(
+    t: &Triangulation,
+    (a, b): (usize, usize),
+    (c, d): (usize, usize),
+) -> Option<String> {
+    let p = |i| t.vertex(i);
+    let on_segment = |q: usize, s: usize, e: usize| {
+        let (ps, pe, pq) = (p(s), p(e), p(q));
+        let len2 = (pe - ps).norm_squared();
+        let area = orient(ps, pe, pq).abs();
+        let along = (pq - ps).dot(&(pe - ps));
+        area <= 1e-12 * len2 && along > 0.0 && along < len2
+    };
+    for (q, s, e) in [(a, c, d), (b, c, d), (c, a, b), (d, a, b)] {
+        if q != s && q != e && on_segment(q, s, e) {
+            return Some(format!(
+                "vertex {q} lies on the edge ({s}, {e}) (a hanging node)"
+            ));
+        }
+    }
+    let shared = a == c || a == d || b == c || b == d;
+    if shared {
+        return None;
+    }
+    let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
+    let o1 = orient(pa, pb, pc);
+    let o2 = orient(pa, pb, pd);
+    let o3 = orient(pc, pd, pa);
+    let o4 = orient(pc, pd, pb);
+    if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
+        return Some("they cross".to_string());
+    }
+    None
+}
