@@ -17,6 +17,7 @@ pub(crate) mod test_util;
 
 pub mod bezier;
 pub mod geometry;
+pub mod ps;
 pub mod quadrature;
 pub mod triangulation;
 pub mod vector;

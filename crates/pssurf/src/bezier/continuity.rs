@@ -19,7 +19,9 @@ pub struct Continuity {
 /// C^r iff b̂_λ = b^{λ1}_{0,λ2,λ3}(σ) for λ1 ≤ r, i.e. iff the first r + 1 rows of `b`'s net,
 /// counted from the common edge, equal those of `a`'s polynomial written over `b`'s triangle.
 ///
-/// Rows are compared with tolerance `tol` relative to the largest ordinate (at least 1).
+/// Row r is compared with tolerance `tol · size · (Σ|σ_i|)^r`, where size is the largest
+/// ordinate (at least 1) and σ the barycentric coordinates of `b`'s apex w.r.t. `a`'s triangle:
+/// extending `a` onto `b` takes r de Casteljau steps with σ, which amplify rounding by that factor.
 ///
 /// ```
 /// use pssurf::bezier::{continuity, BezierError, BezierTriangle};
@@ -60,9 +62,12 @@ pub fn continuity<V: Vector>(
         let r = l[apex];
         deviation[r] = f64::max(deviation[r], (pb - pe).max_abs());
     }
+    let sigma = a.bary_map().apply(b.domain().v[apex]);
+    let amp = sigma.iter().map(|s| s.abs()).sum::<f64>().max(1.0);
     let order = deviation
         .iter()
-        .take_while(|&&d| d <= tol * size)
+        .enumerate()
+        .take_while(|&(r, &d)| d <= tol * size * amp.powi(r as i32))
         .count()
         .checked_sub(1);
     Ok(Continuity { order, deviation })

@@ -4,9 +4,7 @@
 use nalgebra::Point2;
 
 use super::BezierError;
-use super::index::{
-    binomial, de_casteljau_steps, falling_factorial, index, multi_indices, net_len,
-};
+use super::index::{binomial, de_casteljau_steps, falling_factorial, multi_indices, net_len};
 use super::jet::Jet;
 use super::triangle::{BezierTriangle, blossom_with, elevate_net, mid_edge_triangles};
 use crate::geometry::{Bary, BaryMap, Triangle2};
@@ -178,67 +176,8 @@ impl<V: Vector> RationalBezierTriangle<V> {
         if self.degree < 2 {
             return self.elevated_to_two().jet(p);
         }
-        let m = self.degree as f64;
         let (q, qw) = self.projected(t, self.degree - 2)?;
-        // Level m−1: b_i = Σ_j τ̃ P_{e_i + e_j}.
-        let pair = |i: usize, j: usize| {
-            let mut l = [0usize; 3];
-            l[i] += 1;
-            l[j] += 1;
-            index(l)
-        };
-        let mut b1 = [V::zero(); 3];
-        let mut w1 = [0.0; 3];
-        for i in 0..3 {
-            let ws: [f64; 3] = std::array::from_fn(|j| t[j] * qw[pair(i, j)]);
-            let wsum: f64 = ws.iter().sum();
-            if !(wsum > 0.0) {
-                return Err(BezierError::NonPositiveWeight);
-            }
-            w1[i] = wsum;
-            for j in 0..3 {
-                b1[i] += q[pair(i, j)] * (ws[j] / wsum);
-            }
-        }
-        let ws: [f64; 3] = std::array::from_fn(|i| t[i] * w1[i]);
-        let w: f64 = ws.iter().sum();
-        if !(w > 0.0) {
-            return Err(BezierError::NonPositiveWeight);
-        }
-        let mut b = V::zero();
-        for i in 0..3 {
-            b += b1[i] * (ws[i] / w);
-        }
-        let (dx, dy) = (self.map.dx(), self.map.dy());
-        let first = |d: Bary| {
-            let mut acc = V::zero();
-            let mut dw = 0.0;
-            for i in 0..3 {
-                acc += (b1[i] - b) * (d[i] * w1[i] / w);
-                dw += d[i] * w1[i] / w;
-            }
-            (acc * m, dw * m)
-        };
-        let (bx, wx) = first(dx);
-        let (by, wy) = first(dy);
-        let second = |d: Bary, e: Bary, bd: V, wd: f64, be: V, we: f64| {
-            let mut acc = V::zero();
-            for i in 0..3 {
-                for j in 0..3 {
-                    let k = pair(i, j);
-                    acc += (q[k] - b) * (d[i] * e[j] * qw[k] / w);
-                }
-            }
-            acc * (m * (m - 1.0)) - be * wd - bd * we
-        };
-        Ok(Jet {
-            value: b,
-            dx: bx,
-            dy: by,
-            dxx: second(dx, dx, bx, wx, bx, wx),
-            dxy: second(dx, dy, bx, wx, by, wy),
-            dyy: second(dy, dy, by, wy, by, wy),
-        })
+        rational_quadratic_jet(&q, &qw, t, self.map.dx(), self.map.dy(), self.degree as f64)
     }
 
     /// The r-th directional derivative D^r_d b(τ) by Leibniz' rule (3.18), in the stable form
@@ -344,4 +283,69 @@ impl<V: Vector> RationalBezierTriangle<V> {
             .zip(self.points.iter().zip(&self.weights))
             .map(|(l, (&p, &w))| (l, p, w))
     }
+}
+
+/// The jet of a rational patch from its projected degree-2 intermediate net (points `q`,
+/// weights `qw`, storage order) at τ with unit directions d_x, d_y; `m` is the patch degree.
+/// See [`RationalBezierTriangle::jet`] for the formulas.
+pub(crate) fn rational_quadratic_jet<V: Vector>(
+    q: &[V],
+    qw: &[f64],
+    t: Bary,
+    dx: Bary,
+    dy: Bary,
+    m: f64,
+) -> Result<Jet<V>, BezierError> {
+    const PAIR: [[usize; 3]; 3] = [[0, 1, 2], [1, 3, 4], [2, 4, 5]];
+    let mut b1 = [V::zero(); 3];
+    let mut w1 = [0.0; 3];
+    for i in 0..3 {
+        let ws: [f64; 3] = std::array::from_fn(|j| t[j] * qw[PAIR[i][j]]);
+        let wsum: f64 = ws.iter().sum();
+        if !(wsum > 0.0) {
+            return Err(BezierError::NonPositiveWeight);
+        }
+        w1[i] = wsum;
+        for j in 0..3 {
+            b1[i] += q[PAIR[i][j]] * (ws[j] / wsum);
+        }
+    }
+    let ws: [f64; 3] = std::array::from_fn(|i| t[i] * w1[i]);
+    let w: f64 = ws.iter().sum();
+    if !(w > 0.0) {
+        return Err(BezierError::NonPositiveWeight);
+    }
+    let mut b = V::zero();
+    for i in 0..3 {
+        b += b1[i] * (ws[i] / w);
+    }
+    let first = |d: Bary| {
+        let mut acc = V::zero();
+        let mut dw = 0.0;
+        for i in 0..3 {
+            acc += (b1[i] - b) * (d[i] * w1[i] / w);
+            dw += d[i] * w1[i] / w;
+        }
+        (acc * m, dw * m)
+    };
+    let (bx, wx) = first(dx);
+    let (by, wy) = first(dy);
+    let second = |d: Bary, e: Bary, bd: V, wd: f64, be: V, we: f64| {
+        let mut acc = V::zero();
+        for i in 0..3 {
+            for j in 0..3 {
+                let k = PAIR[i][j];
+                acc += (q[k] - b) * (d[i] * e[j] * qw[k] / w);
+            }
+        }
+        acc * (m * (m - 1.0)) - be * wd - bd * we
+    };
+    Ok(Jet {
+        value: b,
+        dx: bx,
+        dy: by,
+        dxx: second(dx, dx, bx, wx, bx, wx),
+        dxy: second(dx, dy, bx, wx, by, wy),
+        dyy: second(dy, dy, by, wy, by, wy),
+    })
 }

@@ -329,6 +329,11 @@ pub(crate) fn jet_from_net<V: Vector>(
 
 /// Jet from the degree-2 intermediate net `q` (b^{m−2}) of a degree-m patch:
 /// D_d b = m Σ d_i b^{m−1}_{e_i}, D_d D_e b = m (m − 1) Σ d_i e_j b^{m−2}_{e_i + e_j}.
+///
+/// Since Σ d_i = Σ e_i = 0, constants may be subtracted before contracting: the first
+/// derivative uses b^{m−1}_i − b^{m−1}_1 and the second the double differences
+/// B_ij − B_i1 − B_1j + B_11 of B_ij = b^{m−2}_{e_i + e_j}. This is algebraically identical and
+/// avoids the cancellation of large terms on small or thin triangles (|d| ~ 1/size).
 #[inline]
 pub(crate) fn quadratic_jet<V: Vector>(q: &[V], t: Bary, dx: Bary, dy: Bary, m: f64) -> Jet<V> {
     // q order: 200, 110, 101, 020, 011, 002.
@@ -339,14 +344,15 @@ pub(crate) fn quadratic_jet<V: Vector>(q: &[V], t: Bary, dx: Bary, dy: Bary, m: 
         q101 * t[0] + q011 * t[1] + q002 * t[2],
     ];
     let value = b1[0] * t[0] + b1[1] * t[1] + b1[2] * t[2];
-    let first = |d: Bary| (b1[0] * d[0] + b1[1] * d[1] + b1[2] * d[2]) * m;
+    let (e1, e2) = (b1[1] - b1[0], b1[2] - b1[0]);
+    let first = |d: Bary| (e1 * d[1] + e2 * d[2]) * m;
+    // Double differences: D11, D12, D22 (row and column 0 vanish).
+    let d11 = q020 - q110 - q110 + q200;
+    let d12 = q011 - q110 - q101 + q200;
+    let d22 = q002 - q101 - q101 + q200;
     let second = |d: Bary, e: Bary| {
-        let bd = [
-            q200 * d[0] + q110 * d[1] + q101 * d[2],
-            q110 * d[0] + q020 * d[1] + q011 * d[2],
-            q101 * d[0] + q011 * d[1] + q002 * d[2],
-        ];
-        (bd[0] * e[0] + bd[1] * e[1] + bd[2] * e[2]) * (m * (m - 1.0))
+        (d11 * (d[1] * e[1]) + d12 * (d[1] * e[2] + d[2] * e[1]) + d22 * (d[2] * e[2]))
+            * (m * (m - 1.0))
     };
     Jet {
         value,

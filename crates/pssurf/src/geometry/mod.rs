@@ -1,4 +1,11 @@
-//! Plane geometry of the domain: points, triangles and barycentric coordinates.
+//! Plane geometry of the domain: points, triangles and barycentric coordinates, convex hulls
+//! and minimal enclosing triangles.
+
+mod enclosing_triangle;
+pub mod hull;
+
+pub use enclosing_triangle::min_enclosing_triangle;
+pub use hull::convex_hull;
 
 use nalgebra::{Point2, Vector2};
 
@@ -13,11 +20,14 @@ pub struct Triangle2 {
     pub v: [Point2<f64>; 3],
 }
 
-/// The affine map from Cartesian (x, y) to barycentric coordinates of one triangle:
-/// τ_i = c_i + g_i · (x, y).
+/// The affine map from Cartesian (x, y) to barycentric coordinates of one triangle, written
+/// about a local origin o near the triangle for accuracy: τ_i = c_i + g_i · ((x, y) − o).
+/// (For a PS-triangle with o = V_i this is (2.37)–(2.39): c = α_i, g = (β_i, γ_i).)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BaryMap {
-    /// Constant terms c_i.
+    /// The local origin o.
+    pub origin: Point2<f64>,
+    /// The barycentric coordinates c_i of the origin.
     pub c: [f64; 3],
     /// Gradients g_i = ∂τ_i/∂(x, y); the x-column is the unit direction d_x of (2.18),
     /// the y-column d_y of (2.19).
@@ -28,11 +38,22 @@ impl BaryMap {
     /// Barycentric coordinates of `p`.
     #[inline]
     pub fn apply(&self, p: Point2<f64>) -> Bary {
+        let (x, y) = (p.x - self.origin.x, p.y - self.origin.y);
         [
-            self.c[0] + self.g[0].x * p.x + self.g[0].y * p.y,
-            self.c[1] + self.g[1].x * p.x + self.g[1].y * p.y,
-            self.c[2] + self.g[2].x * p.x + self.g[2].y * p.y,
+            self.c[0] + self.g[0].x * x + self.g[0].y * y,
+            self.c[1] + self.g[1].x * x + self.g[1].y * y,
+            self.c[2] + self.g[2].x * x + self.g[2].y * y,
         ]
+    }
+
+    /// The same map written about another origin `o` (whose coordinates are computed
+    /// accurately by `exact`, e.g. from sub-areas).
+    pub fn with_origin(&self, o: Point2<f64>, exact: Bary) -> Self {
+        BaryMap {
+            origin: o,
+            c: exact,
+            g: self.g,
+        }
     }
     /// The barycentric direction of the x-axis, d_x of (2.18).
     #[inline]
@@ -84,16 +105,18 @@ impl Triangle2 {
             return None;
         }
         let [a, b, c] = self.v;
-        // τ1 = ((y2 − y3) x + (x3 − x2) y + x2 y3 − x3 y2) / e, and cyclically.
+        // ∂τ1/∂(x, y) = (y2 − y3, x3 − x2) / e, and cyclically (2.18)–(2.20); about V1,
+        // whose coordinates are (1, 0, 0).
         let g = [
             Vector2::new(b.y - c.y, c.x - b.x) / e,
             Vector2::new(c.y - a.y, a.x - c.x) / e,
             Vector2::new(a.y - b.y, b.x - a.x) / e,
         ];
-        let c0 = (b.x * c.y - c.x * b.y) / e;
-        let c1 = (c.x * a.y - a.x * c.y) / e;
-        let c2 = (a.x * b.y - b.x * a.y) / e;
-        Some(BaryMap { c: [c0, c1, c2], g })
+        Some(BaryMap {
+            origin: a,
+            c: [1.0, 0.0, 0.0],
+            g,
+        })
     }
 
     /// Barycentric coordinates of `p` (2.1), computed from sub-areas for accuracy.

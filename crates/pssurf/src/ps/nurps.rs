@@ -1,0 +1,177 @@
+//! Non-uniform rational PS-spline (NURPS) surfaces (thesis section 3.3).
+
+use std::sync::Arc;
+
+use nalgebra::Point2;
+
+use super::basis::{PsBasis, SubLocation};
+use super::net::{NET_LEN, SUB_ORDINATES, Weighted};
+use super::spline::{PsJet, build_nets};
+use super::{PatchId, PsError};
+use crate::bezier::RationalBezierTriangle;
+use crate::bezier::rational::rational_quadratic_jet;
+use crate::vector::Vector;
+
+/// A NURPS surface s(u) = Σ c_ij w_ij B_i^j(u) / Σ w_ij B_i^j(u) (3.32) with weights w_ij > 0.
+///
+/// Its rational Bézier nets are computed with the stable scheme of section 3.3.2: weights
+/// first (3.44)–(3.47), then convex combinations of the control points with the normalised
+/// coefficients (3.49)–(3.63), never forming the large homogeneous points w c.
+#[derive(Clone, Debug)]
+pub struct Nurps<V> {
+    basis: Arc<PsBasis>,
+    points: Vec<[V; 3]>,
+    weights: Vec<[f64; 3]>,
+    nets: Vec<[Weighted<V>; NET_LEN]>,
+}
+
+impl<V: Vector> Nurps<V> {
+    /// A NURPS surface from control points and weights (one triple of each per vertex);
+    /// every point must be finite and every weight finite and positive.
+    pub fn new(
+        basis: Arc<PsBasis>,
+        points: Vec<[V; 3]>,
+        weights: Vec<[f64; 3]>,
+    ) -> Result<Self, PsError> {
+        let n = basis.triangulation().vertex_count();
+        for (what, len) in [
+            ("control point triples", points.len()),
+            ("weight triples", weights.len()),
+        ] {
+            if len != n {
+                return Err(PsError::WrongCount {
+                    what,
+                    expected: n,
+                    found: len,
+                });
+            }
+        }
+        for i in 0..n {
+            if let Some(j) = points[i].iter().position(|v| !v.is_finite()) {
+                return Err(PsError::NonFiniteCoefficient {
+                    vertex: i,
+                    index: j,
+                });
+            }
+            if let Some(j) = weights[i].iter().position(|&w| !(w > 0.0 && w.is_finite())) {
+                return Err(PsError::InvalidWeight {
+                    vertex: i,
+                    index: j,
+                    weight: weights[i][j],
+                });
+            }
+        }
+        let ctrl = weighted(&points, &weights);
+        let nets = build_nets(&basis, &ctrl);
+        Ok(Nurps {
+            basis,
+            points,
+            weights,
+            nets,
+        })
+    }
+
+    /// The basis.
+    pub fn basis(&self) -> &Arc<PsBasis> {
+        &self.basis
+    }
+    /// The control points c_ij.
+    pub fn points(&self) -> &[[V; 3]] {
+        &self.points
+    }
+    /// The weights w_ij.
+    pub fn weights(&self) -> &[[f64; 3]] {
+        &self.weights
+    }
+
+    /// Replaces the control points and weights of vertex i, updating its molecule's nets.
+    pub fn set_vertex(
+        &mut self,
+        i: usize,
+        points: [V; 3],
+        weights: [f64; 3],
+    ) -> Result<(), PsError> {
+        if let Some(j) = points.iter().position(|v| !v.is_finite()) {
+            return Err(PsError::NonFiniteCoefficient {
+                vertex: i,
+                index: j,
+            });
+        }
+        if let Some(j) = weights.iter().position(|&w| !(w > 0.0 && w.is_finite())) {
+            return Err(PsError::InvalidWeight {
+                vertex: i,
+                index: j,
+                weight: weights[j],
+            });
+        }
+        self.points[i] = points;
+        self.weights[i] = weights;
+        let ctrl = weighted(&self.points, &self.weights);
+        for &t in self.basis.triangulation().molecule(i) {
+            self.nets[t as usize] = self.basis.net(t as usize, &ctrl);
+        }
+        Ok(())
+    }
+
+    /// The rational quadratic Bézier patch of sub-triangle `sub` of triangle `t`.
+    pub fn patch(&self, t: usize, sub: usize) -> RationalBezierTriangle<V> {
+        let n = &self.nets[t];
+        let idx = &SUB_ORDINATES[sub];
+        RationalBezierTriangle::try_new(
+            self.basis.sub_triangle(t, sub),
+            2,
+            idx.iter().map(|&k| n[k].point).collect(),
+            idx.iter().map(|&k| n[k].weight).collect(),
+        )
+        .expect("positive weights")
+    }
+
+    /// The value and derivatives at a located point.
+    pub fn jet_at(&self, loc: &SubLocation) -> PsJet<V> {
+        let n = &self.nets[loc.triangle];
+        let idx = &SUB_ORDINATES[loc.sub];
+        let q: [V; 6] = std::array::from_fn(|k| n[idx[k]].point);
+        let qw: [f64; 6] = std::array::from_fn(|k| n[idx[k]].weight);
+        // Inside the domain the barycentric coordinates are (almost) non-negative and the
+        // weights positive, so the denominators are positive.
+        let jet = rational_quadratic_jet(&q, &qw, loc.bary, loc.dx, loc.dy, 2.0)
+            .expect("positive weights inside the domain");
+        PsJet {
+            jet,
+            patch: PatchId::new(loc.triangle, loc.sub),
+        }
+    }
+
+    /// s(p) with derivatives up to order two, or an error outside the domain.
+    pub fn jet(&self, p: Point2<f64>) -> Result<PsJet<V>, PsError> {
+        self.jet_from(p, &mut 0)
+    }
+
+    /// As [`Nurps::jet`], walking from the triangle in `hint` and updating it.
+    pub fn jet_from(&self, p: Point2<f64>, hint: &mut usize) -> Result<PsJet<V>, PsError> {
+        let loc = self
+            .basis
+            .locate(p, *hint)
+            .ok_or(PsError::OutsideDomain { x: p.x, y: p.y })?;
+        *hint = loc.triangle;
+        Ok(self.jet_at(&loc))
+    }
+
+    /// s(p).
+    pub fn eval(&self, p: Point2<f64>) -> Result<V, PsError> {
+        Ok(self.jet(p)?.jet.value)
+    }
+}
+
+fn weighted<V: Vector>(points: &[[V; 3]], weights: &[[f64; 3]]) -> Vec<[Weighted<V>; 3]> {
+    points
+        .iter()
+        .zip(weights)
+        .map(|(p, w)| {
+            std::array::from_fn(|j| Weighted {
+                point: p[j],
+                weight: w[j],
+            })
+        })
+        .collect()
+}

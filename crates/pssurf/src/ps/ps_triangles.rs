@@ -1,0 +1,136 @@
+//! PS-points and PS-triangles (Definitions 2.19–2.21).
+
+use nalgebra::Point2;
+use rayon::prelude::*;
+
+use super::PsError;
+use super::refinement::PsRefinement;
+use crate::geometry::{Triangle2, convex_hull, midpoint, min_enclosing_triangle};
+use crate::triangulation::Triangulation;
+
+/// Containment tolerance for PS-points in a PS-triangle, in barycentric coordinates.
+pub const CONTAINMENT_TOLERANCE: f64 = 1e-9;
+
+/// How the PS-triangles t_i are chosen.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum PsTriangleChoice {
+    /// Dierckx's optimal triangles: of minimal area among those containing the PS-points, so
+    /// that the control triangles lie close to the surface.
+    #[default]
+    Optimal,
+    /// Given triangles, one per vertex, each validated to contain the vertex's PS-points.
+    Given(Vec<Triangle2>),
+}
+
+/// The PS-points of vertex V_i (Definition 2.19): V_i itself and, on every edge of Δ* at V_i,
+/// the Bézier domain point nearest V_i — the midpoints of V_i R and V_i Z for the edge points
+/// R of V_i's edges and the interior points Z of its molecule.
+pub fn ps_points(tri: &Triangulation, refinement: &PsRefinement, i: usize) -> Vec<Point2<f64>> {
+    let vi = tri.vertex(i);
+    let mut pts = Vec::with_capacity(1 + 3 * tri.molecule_number(i));
+    pts.push(vi);
+    for &t in tri.molecule(i) {
+        let t = t as usize;
+        let c = tri
+            .corner_of(t, i)
+            .expect("molecule triangle has the vertex");
+        pts.push(midpoint(vi, refinement.edge_point(tri, t, c)));
+        pts.push(midpoint(vi, refinement.edge_point(tri, t, (c + 2) % 3)));
+        pts.push(midpoint(vi, refinement.z(t)));
+    }
+    pts
+}
+
+/// The PS-triangles of all vertices.
+pub fn ps_triangles(
+    tri: &Triangulation,
+    refinement: &PsRefinement,
+    choice: &PsTriangleChoice,
+) -> Result<Vec<Triangle2>, PsError> {
+    match choice {
+        PsTriangleChoice::Optimal => (0..tri.vertex_count())
+            .into_par_iter()
+            .with_min_len(256)
+            .map(|i| {
+                let pts = ps_points(tri, refinement, i);
+                min_enclosing_triangle(&pts).ok_or(PsError::DegeneratePsTriangle { vertex: i })
+            })
+            .collect(),
+        PsTriangleChoice::Given(given) => {
+            if given.len() != tri.vertex_count() {
+                return Err(PsError::WrongCount {
+                    what: "PS-triangles",
+                    expected: tri.vertex_count(),
+                    found: given.len(),
+                });
+            }
+            given
+                .iter()
+                .enumerate()
+                .map(|(i, t)| validate_ps_triangle(tri, refinement, i, t))
+                .collect()
+        }
+    }
+}
+
+/// Checks that `t` is a proper PS-triangle of vertex `i` and returns it counter-clockwise.
+pub fn validate_ps_triangle(
+    tri: &Triangulation,
+    refinement: &PsRefinement,
+    i: usize,
+    t: &Triangle2,
+) -> Result<Triangle2, PsError> {
+    if t.v.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) || t.is_degenerate() {
+        return Err(PsError::DegeneratePsTriangle { vertex: i });
+    }
+    let t = if t.det() < 0.0 {
+        Triangle2::new(t.v[0], t.v[2], t.v[1])
+    } else {
+        *t
+    };
+    for p in ps_points(tri, refinement, i) {
+        let b = t.bary(p);
+        if b.iter().any(|&x| x < -CONTAINMENT_TOLERANCE) {
+            return Err(PsError::PsPointOutside {
+                vertex: i,
+                point: [p.x, p.y],
+            });
+        }
+    }
+    Ok(t)
+}
+
+/// How good a PS-triangle is: its area relative to the convex hull of the PS-points (≥ 1; the
+/// optimal triangle minimises it) and its smallest angle in degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PsTriangleQuality {
+    /// Area of t_i over the area of the hull of the PS-points.
+    pub area_ratio: f64,
+    /// The smallest interior angle of t_i, in degrees.
+    pub min_angle_deg: f64,
+}
+
+/// The quality measures of the PS-triangle `t` of vertex `i`.
+pub fn quality(
+    tri: &Triangulation,
+    refinement: &PsRefinement,
+    i: usize,
+    t: &Triangle2,
+) -> PsTriangleQuality {
+    let hull = convex_hull(&ps_points(tri, refinement, i));
+    let hull_area: f64 = (1..hull.len().saturating_sub(1))
+        .map(|k| Triangle2::new(hull[0], hull[k], hull[k + 1]).area())
+        .sum();
+    let angle = |a: Point2<f64>, b: Point2<f64>, c: Point2<f64>| {
+        let (u, v) = (b - a, c - a);
+        (u.dot(&v) / (u.norm() * v.norm()))
+            .clamp(-1.0, 1.0)
+            .acos()
+            .to_degrees()
+    };
+    let [a, b, c] = t.v;
+    PsTriangleQuality {
+        area_ratio: t.area() / hull_area,
+        min_angle_deg: angle(a, b, c).min(angle(b, c, a)).min(angle(c, a, b)),
+    }
+}

@@ -1,0 +1,724 @@
+//! Randomized tests of the PS-spline identities over a catalogue of triangulations.
+
+use std::sync::Arc;
+
+use nalgebra::{Point2, SVector, Vector2, Vector3, Vector4};
+use num_rational::BigRational;
+use num_traits::{ToPrimitive, Zero};
+use rand_chacha::ChaCha8Rng;
+
+use super::net::{self, NET_LEN, SUB_ORDINATES};
+use super::*;
+use crate::bezier::{Jet, continuity};
+use crate::quadrature::TriangleRule;
+use crate::test_util::meshes::catalogue;
+use crate::test_util::*;
+use crate::triangulation::Triangulation;
+
+/// f = a + b x + c y + d x² + e xy + g y², with exact value, gradient and Hessian.
+#[derive(Clone, Copy, Debug)]
+struct Quadratic([f64; 6]);
+
+impl Quadratic {
+    fn random(r: &mut ChaCha8Rng) -> Self {
+        Quadratic(std::array::from_fn(|_| uniform(r, -1.0, 1.0)))
+    }
+    fn jet(&self, p: Point2<f64>) -> Jet<f64> {
+        let [a, b, c, d, e, g] = self.0;
+        let (x, y) = (p.x, p.y);
+        Jet {
+            value: a + b * x + c * y + d * x * x + e * x * y + g * y * y,
+            dx: b + 2.0 * d * x + e * y,
+            dy: c + e * x + 2.0 * g * y,
+            dxx: 2.0 * d,
+            dxy: e,
+            dyy: 2.0 * g,
+        }
+    }
+    fn hermite(&self, p: Point2<f64>) -> Hermite<f64> {
+        let j = self.jet(p);
+        Hermite {
+            value: j.value,
+            dx: j.dx,
+            dy: j.dy,
+        }
+    }
+}
+
+/// Random points of the domain: uniform in each triangle, plus vertices, edge points and
+/// split points (the places where pieces meet).
+fn sample_points(
+    t: &Triangulation,
+    basis: &PsBasis,
+    r: &mut ChaCha8Rng,
+    per_triangle: usize,
+) -> Vec<Point2<f64>> {
+    let mut out = Vec::new();
+    for s in 0..t.triangle_count() {
+        let g = t.triangle_geometry(s);
+        for _ in 0..per_triangle {
+            out.push(g.point(random_bary(r)));
+        }
+        out.push(basis.refinement().z(s));
+        for c in 0..3 {
+            out.push(basis.refinement().edge_point(t, s, c));
+        }
+    }
+    out.extend_from_slice(t.vertices());
+    out
+}
+
+fn bases(seed: u64) -> Vec<(&'static str, Arc<PsBasis>)> {
+    catalogue(seed)
+        .into_iter()
+        .map(|(name, t)| (name, Arc::new(PsBasis::optimal(t).expect(name))))
+        .collect()
+}
+
+/// The domain's size, for relative tolerances.
+fn scale(t: &Triangulation) -> f64 {
+    let (lo, hi) = t.bounds();
+    (hi - lo).norm().max(1.0)
+}
+
+#[test]
+fn basis_is_a_convex_partition_of_unity_with_local_support() {
+    let mut r = rng(40);
+    for seed in 0..3 {
+        for (name, basis) in bases(seed) {
+            let t = basis.triangulation();
+            // All nine basis functions that live on a triangle at once: unit vectors in R⁹ as
+            // control values of its three vertices.
+            let mut unit = vec![[SVector::<f64, 9>::zeros(); 3]; t.vertex_count()];
+            let mut worst_sum: f64 = 0.0;
+            let mut worst_neg: f64 = 0.0;
+            for s in 0..t.triangle_count() {
+                let v = t.triangle(s);
+                for c in 0..3 {
+                    for j in 0..3 {
+                        unit[v[c]][j] = SVector::<f64, 9>::zeros();
+                        unit[v[c]][j][3 * c + j] = 1.0;
+                    }
+                }
+                let netv = basis.net(s, &unit);
+                for _ in 0..20 {
+                    let p = t.triangle_geometry(s).point(random_bary(&mut r));
+                    let loc = basis.sub_locate(crate::triangulation::Location {
+                        triangle: s,
+                        bary: t.bary(s, p),
+                    });
+                    let idx = SUB_ORDINATES[loc.sub];
+                    let q: Vec<_> = idx.iter().map(|&k| netv[k]).collect();
+                    let b =
+                        crate::bezier::triangle::quadratic_jet(&q, loc.bary, loc.dx, loc.dy, 2.0)
+                            .value;
+                    worst_sum = worst_sum.max((b.sum() - 1.0).abs());
+                    worst_neg = worst_neg.min(b.min());
+                }
+            }
+            assert!(worst_sum < 1e-13, "{name}: Σ B − 1 = {worst_sum:e}");
+            assert!(worst_neg > -1e-13, "{name}: min B = {worst_neg:e}");
+
+            // Local support: a single basis function is zero on triangles outside its molecule.
+            let i = r_index(&mut r, t.vertex_count());
+            for j in 0..3 {
+                let mut c = vec![[0.0; 3]; t.vertex_count()];
+                c[i][j] = 1.0;
+                let b = PsSpline::new(basis.clone(), c).unwrap();
+                for s in 0..t.triangle_count() {
+                    let inside = t.corner_of(s, i).is_some();
+                    let nonzero = b.net(s).iter().any(|&x| x != 0.0);
+                    assert_eq!(nonzero, inside, "{name}: B_{i}^{j} on triangle {s}");
+                }
+            }
+        }
+    }
+}
+
+fn r_index(r: &mut ChaCha8Rng, n: usize) -> usize {
+    (uniform(r, 0.0, n as f64) as usize).min(n - 1)
+}
+
+#[test]
+fn linear_and_quadratic_functions_are_reproduced_exactly() {
+    let mut r = rng(41);
+    for seed in 0..3 {
+        for (name, basis) in bases(seed) {
+            let t = basis.triangulation();
+            let h = scale(t);
+            // Linear precision (2.47)–(2.48): c_ij = X_ij reproduces x.
+            let xs: Vec<[f64; 3]> = (0..t.vertex_count())
+                .map(|i| basis.control_xy(i).map(|q| q.x))
+                .collect();
+            let ys: Vec<[f64; 3]> = (0..t.vertex_count())
+                .map(|i| basis.control_xy(i).map(|q| q.y))
+                .collect();
+            let sx = PsSpline::new(basis.clone(), xs).unwrap();
+            let sy = PsSpline::new(basis.clone(), ys).unwrap();
+            let f = Quadratic::random(&mut r);
+            let s = PsSpline::interpolate(basis.clone(), |p| f.hermite(p)).unwrap();
+            let fscale = 1.0 + h * h;
+            let mut ev = s.evaluator();
+            for p in sample_points(t, &basis, &mut r, 5) {
+                assert!((sx.eval(p).unwrap() - p.x).abs() < 1e-13 * h, "{name}");
+                assert!((sy.eval(p).unwrap() - p.y).abs() < 1e-13 * h, "{name}");
+                let loc = ev.locate(p).unwrap();
+                let got = s.jet_at(&loc).jet;
+                let want = f.jet(p);
+                // Derivatives of order k come from ordinates of size ~|f| through k factors
+                // |∇σ| ~ 1/(sub-triangle size): the forward-error scale is |f| g^k.
+                let g = [loc.dx, loc.dy]
+                    .iter()
+                    .map(|d| d.iter().map(|x| x.abs()).sum::<f64>())
+                    .fold(1.0, f64::max);
+                let tol = |k: i32| 4e-15 * fscale * g.powi(k);
+                assert!(
+                    (got.value - want.value).abs() < tol(0),
+                    "{name} value at {p:?}"
+                );
+                assert!((got.dx - want.dx).abs() < tol(1), "{name} dx");
+                assert!((got.dy - want.dy).abs() < tol(1), "{name} dy");
+                for (a, b) in [
+                    (got.dxx, want.dxx),
+                    (got.dxy, want.dxy),
+                    (got.dyy, want.dyy),
+                ] {
+                    assert!(
+                        (a - b).abs() < tol(2),
+                        "{name} Hessian {a} vs {b}, g = {g:e}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn splines_are_c1_across_every_edge_of_the_refinement() {
+    let mut r = rng(42);
+    for seed in 0..2 {
+        for (name, basis) in bases(seed) {
+            let t = basis.triangulation();
+            let coeffs: Vec<[Vector3<f64>; 3]> = (0..t.vertex_count())
+                .map(|_| {
+                    std::array::from_fn(|_| {
+                        Vector3::new(
+                            uniform(&mut r, -1.0, 1.0),
+                            uniform(&mut r, -1.0, 1.0),
+                            uniform(&mut r, -1.0, 1.0),
+                        )
+                    })
+                })
+                .collect();
+            let s = PsSpline::new(basis.clone(), coeffs).unwrap();
+            for tr in 0..t.triangle_count() {
+                let p: Vec<_> = (0..6).map(|k| s.patch(tr, k)).collect();
+                // Inside the triangle: consecutive sub-triangles share an edge (R_c Z or V_c Z).
+                for k in 0..6 {
+                    let (a, b) = (&p[k], &p[(k + 1) % 6]);
+                    let c = continuity(a, b, 1e-12).unwrap();
+                    assert!(
+                        c.order >= Some(1),
+                        "{name} tri {tr} subs {k},{}: {c:?}",
+                        (k + 1) % 6
+                    );
+                    check_sampled_c1(&s, a, b, &mut r, name);
+                }
+                // Across the edges of Δ: the sub-triangles on V_c R_c and its mirror image.
+                for c in 0..3 {
+                    let Some(nb) = t.neighbor(tr, refinement::edge_to_local(c)) else {
+                        continue;
+                    };
+                    let vc = t.triangle(tr)[c];
+                    let d = t.corner_of(nb, vc).unwrap();
+                    // In the neighbour the edge runs V_{c+1} → V_c, i.e. it is edge d − 1 there,
+                    // and the piece at V_c is (R, V_c, Z): sub 2(d − 1) + 1.
+                    let other = s.patch(nb, 2 * ((d + 2) % 3) + 1);
+                    let cont = continuity(&p[2 * c], &other, 1e-12).unwrap();
+                    assert!(
+                        cont.order >= Some(1),
+                        "{name}: tri {tr} edge {c} vs {nb}: {cont:?}"
+                    );
+                    check_sampled_c1(&s, &p[2 * c], &other, &mut r, name);
+                }
+            }
+        }
+    }
+}
+
+/// Values and gradients of two patches agree at random points of their common edge.
+fn check_sampled_c1(
+    _s: &PsSpline<Vector3<f64>>,
+    a: &crate::bezier::BezierTriangle<Vector3<f64>>,
+    b: &crate::bezier::BezierTriangle<Vector3<f64>>,
+    r: &mut ChaCha8Rng,
+    name: &str,
+) {
+    let same = |p: Point2<f64>| b.domain().v.iter().any(|&q| (q - p).norm() < 1e-12);
+    let shared: Vec<_> = a.domain().v.iter().copied().filter(|&p| same(p)).collect();
+    assert_eq!(shared.len(), 2, "{name}");
+    for _ in 0..3 {
+        let t = uniform(r, 0.0, 1.0);
+        let p = Point2::from(shared[0].coords * t + shared[1].coords * (1.0 - t));
+        let (ja, jb) = (a.jet(p), b.jet(p));
+        let size = 1.0 + ja.dx.norm() + ja.dy.norm();
+        assert!(
+            (ja.value - jb.value).norm() < 1e-13 * size,
+            "{name}: values differ"
+        );
+        assert!(
+            (ja.dx - jb.dx).norm() < 1e-11 * size,
+            "{name}: x-derivatives differ {:e}",
+            (ja.dx - jb.dx).norm()
+        );
+        assert!(
+            (ja.dy - jb.dy).norm() < 1e-11 * size,
+            "{name}: y-derivatives differ {:e}",
+            (ja.dy - jb.dy).norm()
+        );
+    }
+}
+
+#[test]
+fn control_triangles_are_tangent_at_their_vertex() {
+    let mut r = rng(43);
+    for (name, basis) in bases(7) {
+        let t = basis.triangulation();
+        let coeffs: Vec<[Vector3<f64>; 3]> = (0..t.vertex_count())
+            .map(|_| {
+                std::array::from_fn(|_| {
+                    Vector3::new(
+                        uniform(&mut r, -1.0, 1.0),
+                        uniform(&mut r, -1.0, 1.0),
+                        uniform(&mut r, -1.0, 1.0),
+                    )
+                })
+            })
+            .collect();
+        let s = PsSpline::new(basis.clone(), coeffs.clone()).unwrap();
+        for i in 0..t.vertex_count() {
+            let alpha = basis.alpha(i);
+            let at_vertex: Vector3<f64> = (0..3).map(|j| coeffs[i][j] * alpha[j]).sum();
+            for &tr in t.molecule(i) {
+                let tr = tr as usize;
+                let c = t.corner_of(tr, i).unwrap();
+                for sub in [2 * c, 2 * ((c + 2) % 3) + 1] {
+                    let j = s.jet_on_patch(PatchId::new(tr, sub), t.vertex(i));
+                    // The tangent point is s(V_i) = Σ α_ij c_ij ...
+                    assert!((j.value - at_vertex).norm() < 1e-13, "{name}");
+                    // ... the derivatives are Σ β c and Σ γ c ...
+                    let (b, g) = (basis.beta(i), basis.gamma(i));
+                    let sx: Vector3<f64> = (0..3).map(|k| coeffs[i][k] * b[k]).sum();
+                    let sy: Vector3<f64> = (0..3).map(|k| coeffs[i][k] * g[k]).sum();
+                    let size = 1.0 + sx.norm() + sy.norm();
+                    assert!(
+                        (j.dx - sx).norm() < 1e-11 * size && (j.dy - sy).norm() < 1e-11 * size,
+                        "{name}"
+                    );
+                    // ... and the control triangle lies in the tangent plane (Theorem 2.5).
+                    let n = j.dx.cross(&j.dy);
+                    if n.norm() > 1e-8 {
+                        let n = n.normalize();
+                        for k in 0..3 {
+                            let off = (coeffs[i][k] - j.value).dot(&n);
+                            assert!(
+                                off.abs() < 1e-11 * (1.0 + (coeffs[i][k] - j.value).norm()),
+                                "{name}: off-plane {off:e}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn ordinates_next_to_a_vertex_lie_on_its_control_plane() {
+    // The derivation of (2.54)–(2.57): the ordinates s, u, v, w next to V_c are values of the
+    // tangent plane at V_c at their domain points.
+    let mut r = rng(44);
+    for (name, basis) in bases(8) {
+        let t = basis.triangulation();
+        let data: Vec<Hermite<f64>> = (0..t.vertex_count())
+            .map(|_| Hermite {
+                value: uniform(&mut r, -1.0, 1.0),
+                dx: uniform(&mut r, -1.0, 1.0),
+                dy: uniform(&mut r, -1.0, 1.0),
+            })
+            .collect();
+        let s = PsSpline::hermite(basis.clone(), &data).unwrap();
+        for tr in 0..t.triangle_count() {
+            let v = t.triangle(tr);
+            let n = s.net(tr);
+            let z = basis.refinement().z(tr);
+            for c in 0..3 {
+                let h = data[v[c]];
+                let vc = t.vertex(v[c]);
+                let plane = |p: Point2<f64>| h.value + h.dx * (p.x - vc.x) + h.dy * (p.y - vc.y);
+                let rn = basis.refinement().edge_point(t, tr, c);
+                let rp = basis.refinement().edge_point(t, tr, (c + 2) % 3);
+                let mid = crate::geometry::midpoint;
+                let pts = [
+                    (net::s(c), vc),
+                    (net::u(c), mid(vc, rn)),
+                    (net::v(c), mid(vc, rp)),
+                    (net::w(c), mid(vc, z)),
+                ];
+                for (k, p) in pts {
+                    assert!(
+                        (n[k] - plane(p)).abs() < 1e-13 * (1.0 + scale(t)),
+                        "{name}: ordinate {k}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn hermite_data_is_interpolated_and_2_45_agrees() {
+    let mut r = rng(45);
+    for (name, basis) in bases(9) {
+        let t = basis.triangulation();
+        let data: Vec<Hermite<f64>> = (0..t.vertex_count())
+            .map(|_| Hermite {
+                value: uniform(&mut r, -1.0, 1.0),
+                dx: uniform(&mut r, -1.0, 1.0),
+                dy: uniform(&mut r, -1.0, 1.0),
+            })
+            .collect();
+        let s = PsSpline::hermite(basis.clone(), &data).unwrap();
+        for i in 0..t.vertex_count() {
+            let j = s.jet(t.vertex(i)).unwrap().jet;
+            assert!((j.value - data[i].value).abs() < 1e-13, "{name}");
+            assert!(
+                (j.dx - data[i].dx).abs() < 1e-11 && (j.dy - data[i].dy).abs() < 1e-11,
+                "{name}"
+            );
+            // (2.45) literally, with d_i = β1 γ2 − γ1 β2 (2.46).
+            let (a, b, g) = (basis.alpha(i), basis.beta(i), basis.gamma(i));
+            let d = b[0] * g[1] - g[0] * b[1];
+            let (f, fx, fy) = (data[i].value, data[i].dx, data[i].dy);
+            let c = [
+                f + fx * (a[1] * g[0] + g[1] * (1.0 - a[0])) / d
+                    + fy * (-a[1] * b[0] - b[1] * (1.0 - a[0])) / d,
+                f + fx * (-a[0] * g[1] - g[0] * (1.0 - a[1])) / d
+                    + fy * (a[0] * b[1] + b[0] * (1.0 - a[1])) / d,
+                f + fx * (-a[0] * g[1] + g[0] * a[1]) / d + fy * (a[0] * b[1] - b[0] * a[1]) / d,
+            ];
+            for k in 0..3 {
+                let want = s.coefficients()[i][k];
+                assert!(
+                    (c[k] - want).abs() < 1e-11 * (1.0 + want.abs()),
+                    "{name}: (2.45) c_{i}{k} = {} vs {want}",
+                    c[k]
+                );
+            }
+            // Corollary 2.4: |α| = 1, |β| = |γ| = 0, and d_i = 1/e_i (2.46).
+            assert!((a.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+            assert!(b.iter().sum::<f64>().abs() < 1e-12 * b.iter().map(|x| x.abs()).sum::<f64>());
+            assert!((d * basis.ps_triangle(i).det() - 1.0).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn integrals_are_exact() {
+    let mut r = rng(46);
+    for (name, basis) in bases(10) {
+        let t = basis.triangulation();
+        let f = Quadratic::random(&mut r);
+        let s = PsSpline::interpolate(basis.clone(), |p| f.hermite(p)).unwrap();
+        let rule = TriangleRule::exact_for(2);
+        let exact: f64 = (0..t.triangle_count())
+            .map(|k| {
+                let g = t.triangle_geometry(k);
+                rule.integrate(&g, |b| f.jet(g.point(b)).value)
+            })
+            .sum();
+        assert!(
+            (s.integral() - exact).abs() < 1e-12 * (1.0 + exact.abs()),
+            "{name}: {} vs {exact}",
+            s.integral()
+        );
+        // Σ ∫ B_i^j = area, and ∫ s = Σ c_ij ∫ B_ij.
+        let bi = basis.basis_integrals();
+        let total: f64 = bi.iter().flatten().sum();
+        assert!((total - t.area()).abs() < 1e-13 * t.area(), "{name}");
+        let via_basis: f64 = bi
+            .iter()
+            .zip(s.coefficients())
+            .map(|(b, c)| (0..3).map(|j| b[j] * c[j]).sum::<f64>())
+            .sum();
+        assert!(
+            (via_basis - s.integral()).abs() < 1e-12 * (1.0 + exact.abs()),
+            "{name}"
+        );
+        assert!(bi.iter().flatten().all(|&x| x > 0.0));
+    }
+}
+
+fn random_points3(r: &mut ChaCha8Rng, n: usize) -> Vec<[Vector3<f64>; 3]> {
+    (0..n)
+        .map(|_| {
+            std::array::from_fn(|_| {
+                Vector3::new(
+                    uniform(r, -1.0, 1.0),
+                    uniform(r, -1.0, 1.0),
+                    uniform(r, -1.0, 1.0),
+                )
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn nurps_with_equal_weights_is_the_ps_surface_and_matches_the_homogeneous_form() {
+    let mut r = rng(47);
+    for (name, basis) in bases(11) {
+        let t = basis.triangulation();
+        let pts = random_points3(&mut r, t.vertex_count());
+        let poly = PsSpline::new(basis.clone(), pts.clone()).unwrap();
+        let equal =
+            Nurps::new(basis.clone(), pts.clone(), vec![[2.5; 3]; t.vertex_count()]).unwrap();
+        let weights: Vec<[f64; 3]> = (0..t.vertex_count())
+            .map(|_| std::array::from_fn(|_| 10f64.powf(uniform(&mut r, -1.0, 1.0))))
+            .collect();
+        let rat = Nurps::new(basis.clone(), pts.clone(), weights.clone()).unwrap();
+        // The homogeneous 4-D PS-spline (3.33)–(3.34), evaluated and divided: independent.
+        let hom: Vec<[Vector4<f64>; 3]> = pts
+            .iter()
+            .zip(&weights)
+            .map(|(p, w)| {
+                std::array::from_fn(|j| {
+                    Vector4::new(p[j].x * w[j], p[j].y * w[j], p[j].z * w[j], w[j])
+                })
+            })
+            .collect();
+        let hom = PsSpline::new(basis.clone(), hom).unwrap();
+        for p in sample_points(t, &basis, &mut r, 3) {
+            let a = equal.jet(p).unwrap().jet;
+            let b = poly.jet(p).unwrap().jet;
+            assert!(
+                a.max_diff(&b) < 1e-11 * (1.0 + b.dxx.norm() + b.dyy.norm()),
+                "{name}"
+            );
+            let got = rat.jet(p).unwrap().jet;
+            let h = hom.jet(p).unwrap().jet;
+            let w = h.value.w;
+            let v3 = |v: Vector4<f64>| Vector3::new(v.x, v.y, v.z);
+            let b = v3(h.value) / w;
+            let bx = (v3(h.dx) - b * h.dx.w) / w;
+            let by = (v3(h.dy) - b * h.dy.w) / w;
+            let bxx = (v3(h.dxx) - bx * (2.0 * h.dx.w) - b * h.dxx.w) / w;
+            let bxy = (v3(h.dxy) - bx * h.dy.w - by * h.dx.w - b * h.dxy.w) / w;
+            let byy = (v3(h.dyy) - by * (2.0 * h.dy.w) - b * h.dyy.w) / w;
+            let want = Jet {
+                value: b,
+                dx: bx,
+                dy: by,
+                dxx: bxx,
+                dxy: bxy,
+                dyy: byy,
+            };
+            let size = 1.0
+                + want.dx.norm()
+                + want.dy.norm()
+                + want.dxx.norm()
+                + want.dxy.norm()
+                + want.dyy.norm();
+            assert!(
+                got.max_diff(&want) < 1e-11 * size,
+                "{name}: {:e}",
+                got.max_diff(&want)
+            );
+        }
+    }
+}
+
+fn big(x: f64) -> BigRational {
+    BigRational::from_float(x).unwrap()
+}
+
+#[test]
+fn nurps_stays_accurate_with_weights_up_to_1e6() {
+    // Reference: exact rational arithmetic on the same basis-function coefficients
+    // (Σ c w B / Σ w B with the stencil and the sub-triangle coordinates as exact numbers).
+    let mut r = rng(48);
+    let mut worst: f64 = 0.0;
+    for (name, basis) in bases(12).into_iter().take(3) {
+        let t = basis.triangulation();
+        let pts = random_points3(&mut r, t.vertex_count());
+        let weights: Vec<[f64; 3]> = (0..t.vertex_count())
+            .map(|_| std::array::from_fn(|_| 1e6f64.powf(uniform(&mut r, 0.0, 1.0))))
+            .collect();
+        let rat = Nurps::new(basis.clone(), pts.clone(), weights.clone()).unwrap();
+        for k in 0..60 {
+            let tr = k % t.triangle_count();
+            let p = t.triangle_geometry(tr).point(random_bary(&mut r));
+            let loc = basis.locate(p, tr).unwrap();
+            let got = rat.jet_at(&loc).jet.value;
+            let st = basis.stencil(loc.triangle);
+            let v = t.triangle(loc.triangle);
+            // Exact homogeneous net (numerator and denominator) from the stencil.
+            let hom = |c: usize, j: usize| -> [BigRational; 4] {
+                let (p, w) = (pts[v[c]][j], big(weights[v[c]][j]));
+                [big(p.x) * &w, big(p.y) * &w, big(p.z) * &w, w]
+            };
+            let comb = |coef: &[f64], vals: &[[BigRational; 4]]| -> [BigRational; 4] {
+                std::array::from_fn(|d| {
+                    coef.iter()
+                        .zip(vals)
+                        .fold(BigRational::zero(), |acc, (c, x)| acc + big(*c) * &x[d])
+                })
+            };
+            let mut n: Vec<[BigRational; 4]> =
+                vec![std::array::from_fn(|_| BigRational::zero()); NET_LEN];
+            for c in 0..3 {
+                let ctrl: Vec<_> = (0..3).map(|j| hom(c, j)).collect();
+                for (row, k) in st.rows[c]
+                    .iter()
+                    .zip([net::s(c), net::u(c), net::v(c), net::w(c)])
+                {
+                    n[k] = comb(row, &ctrl);
+                }
+            }
+            for c in 0..3 {
+                let d = (c + 1) % 3;
+                let l = st.lambda[c];
+                n[net::r(c)] = comb(&[l, 1.0 - l], &[n[net::u(c)].clone(), n[net::v(d)].clone()]);
+                n[net::th(c)] = comb(&[l, 1.0 - l], &[n[net::w(c)].clone(), n[net::w(d)].clone()]);
+            }
+            n[net::OM] = comb(
+                &st.z,
+                &[
+                    n[net::w(0)].clone(),
+                    n[net::w(1)].clone(),
+                    n[net::w(2)].clone(),
+                ],
+            );
+            let q: Vec<_> = SUB_ORDINATES[loc.sub]
+                .iter()
+                .map(|&k| n[k].clone())
+                .collect();
+            let tb: Vec<BigRational> = loc.bary.iter().map(|&x| big(x)).collect();
+            // Quadratic Bernstein sum.
+            let bern = [
+                &tb[0] * &tb[0],
+                big(2.0) * &tb[0] * &tb[1],
+                big(2.0) * &tb[0] * &tb[2],
+                &tb[1] * &tb[1],
+                big(2.0) * &tb[1] * &tb[2],
+                &tb[2] * &tb[2],
+            ];
+            let val: [BigRational; 4] = std::array::from_fn(|d| {
+                (0..6).fold(BigRational::zero(), |acc, k| acc + &bern[k] * &q[k][d])
+            });
+            for d in 0..3 {
+                let exact = (&val[d] / &val[3]).to_f64().unwrap();
+                worst = worst.max((got[d] - exact).abs());
+            }
+        }
+        assert!(
+            worst < 1e-14,
+            "{name}: worst error {worst:e} for control points in [-1, 1]"
+        );
+    }
+}
+
+#[test]
+fn bad_inputs_are_rejected() {
+    let p = |x, y| Point2::new(x, y);
+    // Centroids whose joining segment misses the common edge.
+    let t = Triangulation::new(
+        vec![p(0., 0.), p(1., 0.), p(-5., 0.1), p(-5., -0.1)],
+        vec![[0, 1, 2], [1, 0, 3]],
+    );
+    let e = PsRefinement::new(&t, SplitRule::Centroid).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            PsError::EdgePointOutside {
+                edge: (0, 1) | (1, 0),
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(PsRefinement::new(&t, SplitRule::Incenter).is_ok());
+    assert_eq!(
+        PsRefinement::with_points(&t, vec![p(-1.0, 0.025), p(5.0, 5.0)]).unwrap_err(),
+        PsError::SplitPointOutside { triangle: 1 }
+    );
+    // A user PS-triangle that misses the PS-points.
+    let refn = PsRefinement::new(&t, SplitRule::Incenter).unwrap();
+    let mut given: Vec<_> = (0..4)
+        .map(|i| *PsBasis::optimal(t.clone()).unwrap().ps_triangle(i))
+        .collect();
+    given[2] = crate::geometry::Triangle2::new(p(-5., 0.1), p(-4.9, 0.1), p(-5., 0.2));
+    let e = PsBasis::with_refinement(t.clone(), refn, &PsTriangleChoice::Given(given)).unwrap_err();
+    assert!(
+        matches!(e, PsError::PsPointOutside { vertex: 2, .. }),
+        "{e}"
+    );
+    // Coefficients: wrong count, NaN; weights: zero, negative; points outside.
+    let basis = Arc::new(PsBasis::optimal(t.clone()).unwrap());
+    assert!(matches!(
+        PsSpline::new(basis.clone(), vec![[0.0; 3]; 3]),
+        Err(PsError::WrongCount {
+            expected: 4,
+            found: 3,
+            ..
+        })
+    ));
+    let mut c = vec![[0.0; 3]; 4];
+    c[3][1] = f64::NAN;
+    assert_eq!(
+        PsSpline::new(basis.clone(), c).unwrap_err(),
+        PsError::NonFiniteCoefficient {
+            vertex: 3,
+            index: 1
+        }
+    );
+    let pts = vec![[Vector3::zeros(); 3]; 4];
+    for bad in [0.0, -1.0, f64::INFINITY, f64::NAN] {
+        let mut w = vec![[1.0; 3]; 4];
+        w[1][2] = bad;
+        assert!(matches!(
+            Nurps::new(basis.clone(), pts.clone(), w),
+            Err(PsError::InvalidWeight {
+                vertex: 1,
+                index: 2,
+                ..
+            })
+        ));
+    }
+    let s = PsSpline::new(basis, vec![[1.0; 3]; 4]).unwrap();
+    assert_eq!(
+        s.eval(p(0.5, 5.0)).unwrap_err(),
+        PsError::OutsideDomain { x: 0.5, y: 5.0 }
+    );
+    assert!((s.eval(p(0.5, 0.0)).unwrap() - 1.0).abs() < 1e-15);
+}
+
+#[test]
+fn local_updates_match_a_full_rebuild() {
+    let mut r = rng(49);
+    for (name, basis) in bases(13) {
+        let t = basis.triangulation();
+        let mut pts = random_points3(&mut r, t.vertex_count());
+        let mut s = PsSpline::new(basis.clone(), pts.clone()).unwrap();
+        for _ in 0..5 {
+            let i = r_index(&mut r, t.vertex_count());
+            let new = random_points3(&mut r, 1)[0];
+            pts[i] = new;
+            s.set_coefficients(i, new).unwrap();
+        }
+        let full = PsSpline::new(basis.clone(), pts).unwrap();
+        for k in 0..t.triangle_count() {
+            assert_eq!(s.net(k), full.net(k), "{name}");
+        }
+        let _ = Vector2::<f64>::zeros();
+    }
+}
