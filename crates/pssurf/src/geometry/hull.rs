@@ -40,6 +40,17 @@ pub fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
     hull
 }
 
+/// True when `p` lies in the closed convex polygon `hull` (counter-clockwise), within a
+/// tolerance relative to the polygon's size.
+pub fn point_in_convex(hull: &[Point2<f64>], p: Point2<f64>, tol: f64) -> bool {
+    let n = hull.len();
+    let size = hull
+        .iter()
+        .map(|q| (q - hull[0]).norm_squared())
+        .fold(0.0, f64::max);
+    (0..n).all(|i| orient(hull[i], hull[(i + 1) % n], p) >= -tol * size)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -60,15 +71,4 @@ mod tests {
         assert_eq!(h, vec![p(0., 0.), p(1., 0.), p(1., 1.), p(0., 1.)]);
         assert_eq!(convex_hull(&[p(0., 0.), p(1., 1.), p(2., 2.)]).len(), 2);
     }
-}
-
-/// True when `p` lies in the closed convex polygon `hull` (counter-clockwise), within a
-/// tolerance relative to the polygon's size.
-pub fn point_in_convex(hull: &[Point2<f64>], p: Point2<f64>, tol: f64) -> bool {
-    let n = hull.len();
-    let size = hull
-        .iter()
-        .map(|q| (q - hull[0]).norm_squared())
-        .fold(0.0, f64::max);
-    (0..n).all(|i| orient(hull[i], hull[(i + 1) % n], p) >= -tol * size)
 }
