@@ -17,8 +17,11 @@ pub(crate) mod test_util;
 
 pub mod bezier;
 pub mod geometry;
+#[cfg(feature = "io")]
+pub mod io;
 pub mod ps;
 pub mod quadrature;
+pub mod surface;
 pub mod triangulation;
 pub mod vector;
 
@@ -28,6 +31,11 @@ pub mod prelude {
         BezierCurve, BezierTriangle, Jet, RationalBezierCurve, RationalBezierTriangle,
     };
     pub use crate::geometry::{Bary, Triangle2};
+    pub use crate::ps::{
+        Hermite, Nurps, PatchId, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule,
+    };
+    pub use crate::surface::{Cursor, OutsideDomain, ParametricSurface, PsSurface, SurfaceJet};
+    pub use crate::triangulation::{Triangulation, TriangulationError};
     pub use crate::vector::Vector;
     pub use nalgebra::{Point2, Vector2, Vector3};
 }

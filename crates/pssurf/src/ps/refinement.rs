@@ -28,6 +28,7 @@ const STRICT: f64 = 1e-10;
 /// R_c = λ_c V_c + (1 − λ_c) V_{c+1} (2.50)–(2.52), and Z = a_0 V_0 + a_1 V_1 + a_2 V_2 (2.53).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PsRefinement {
+    rule: Option<SplitRule>,
     z: Vec<Point2<f64>>,
     z_bary: Vec<[f64; 3]>,
     lambda: Vec<[f64; 3]>,
@@ -45,7 +46,14 @@ impl PsRefinement {
                 }
             })
             .collect();
-        Self::with_points(tri, z)
+        let mut r = Self::with_points(tri, z)?;
+        r.rule = Some(rule);
+        Ok(r)
+    }
+
+    /// The rule the split points came from, `None` when they were given.
+    pub fn rule(&self) -> Option<SplitRule> {
+        self.rule
     }
 
     /// The refinement with user-given interior points, one per triangle, each strictly inside.
@@ -85,7 +93,12 @@ impl PsRefinement {
                 lambda[t][c] = 1.0 - mu;
             }
         }
-        Ok(PsRefinement { z, z_bary, lambda })
+        Ok(PsRefinement {
+            rule: None,
+            z,
+            z_bary,
+            lambda,
+        })
     }
 
     /// The interior points Z_j.

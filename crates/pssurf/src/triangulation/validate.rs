@@ -32,6 +32,7 @@ pub(super) fn build(
     }
     check_duplicates(&vertices)?;
     let mut tris = check_triangles(&vertices, &triangles)?;
+    check_duplicate_triangles(&tris)?;
     orient_counter_clockwise(&vertices, &mut tris)?;
     let (offsets, list) = molecules(n, &tris)?;
     let neighbors = adjacency(&tris, &offsets, &list)?;
@@ -92,6 +93,28 @@ fn check_triangles(vertices: &[Point2<f64>], triangles: &[[usize; 3]]) -> Result
         out.push(tri.map(|i| i as u32));
     }
     Ok(out)
+}
+
+fn check_duplicate_triangles(tris: &[[u32; 3]]) -> Result<(), E> {
+    let mut keyed: Vec<([u32; 3], usize)> = tris
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let mut k = *tri;
+            k.sort_unstable();
+            (k, t)
+        })
+        .collect();
+    keyed.sort_unstable();
+    for w in keyed.windows(2) {
+        if w[0].0 == w[1].0 {
+            return Err(E::DuplicateTriangle {
+                triangle: w[1].1,
+                first: w[0].1,
+            });
+        }
+    }
+    Ok(())
 }
 
 fn orient_counter_clockwise(vertices: &[Point2<f64>], tris: &mut [[u32; 3]]) -> Result<(), E> {

@@ -1,0 +1,34 @@
+//! Writing files so that a failure never destroys the previous version.
+
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+/// Writes `path` through `fill` into a temporary file in the same directory, then renames it
+/// over `path`. If `fill` or any write fails, `path` is left untouched and the temporary file
+/// is removed.
+pub fn atomic_write<E: From<std::io::Error>>(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> Result<(), E>,
+) -> Result<(), E> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let tmp = tempfile::Builder::new()
+        .prefix(".pssurf-")
+        .suffix(".tmp")
+        .tempfile_in(dir)?;
+    {
+        let mut w = BufWriter::new(tmp.as_file());
+        fill(&mut w)?;
+        w.flush()?;
+    }
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| E::from(e.error))?;
+    Ok(())
+}
+
+/// Writes `bytes` to `path` atomically (see [`atomic_write`]).
+pub fn atomic_write_bytes(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    atomic_write(path, |w| w.write_all(bytes))
+}

@@ -1,0 +1,12 @@
+//! Files: the versioned pssurf JSON format (see `docs/format.md`) and atomic writing.
+
+mod atomic;
+mod format;
+
+pub use atomic::{atomic_write, atomic_write_bytes};
+pub use format::{
+    FORMAT_VERSION, FileError, FormatError, from_json_str, load, save, to_json_string,
+};
+
+#[cfg(test)]
+mod tests;

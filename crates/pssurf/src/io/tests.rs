@@ -1,0 +1,189 @@
+//! Round trips and rejection of bad files.
+
+use std::sync::Arc;
+
+use nalgebra::{Point2, Vector3};
+
+use super::*;
+use crate::ps::{Nurps, PsBasis, PsRefinement, PsSpline, PsTriangleChoice, SplitRule};
+use crate::surface::{ParametricSurface, PsSurface};
+use crate::test_util::meshes::structured;
+use crate::test_util::*;
+
+fn sample_surfaces() -> Vec<PsSurface> {
+    let mut r = rng(60);
+    let t = structured(&mut r, 3);
+    let n = t.vertex_count();
+    let b1 = Arc::new(PsBasis::optimal(t.clone()).unwrap());
+    let b2 =
+        Arc::new(PsBasis::new(t.clone(), SplitRule::Centroid, &PsTriangleChoice::Optimal).unwrap());
+    let z = (0..t.triangle_count())
+        .map(|k| t.triangle_geometry(k).point([0.5, 0.3, 0.2]))
+        .collect();
+    let refn = PsRefinement::with_points(&t, z).unwrap();
+    let b3 = Arc::new(PsBasis::with_refinement(t, refn, &PsTriangleChoice::Optimal).unwrap());
+    let c: Vec<[f64; 3]> = (0..n)
+        .map(|_| std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0)))
+        .collect();
+    let p: Vec<[Vector3<f64>; 3]> = (0..n)
+        .map(|_| {
+            std::array::from_fn(|_| {
+                Vector3::new(
+                    uniform(&mut r, -1.0, 1.0),
+                    uniform(&mut r, -1.0, 1.0),
+                    uniform(&mut r, -1.0, 1.0),
+                )
+            })
+        })
+        .collect();
+    let w: Vec<[f64; 3]> = (0..n)
+        .map(|_| std::array::from_fn(|_| uniform(&mut r, 0.1, 10.0)))
+        .collect();
+    vec![
+        PsSurface::Functional(PsSpline::new(b1, c).unwrap()),
+        PsSurface::Parametric(PsSpline::new(b2, p.clone()).unwrap()),
+        PsSurface::Rational(Nurps::new(b3, p, w).unwrap()),
+    ]
+}
+
+#[test]
+fn every_kind_round_trips_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    for s in sample_surfaces() {
+        let path = dir.path().join(format!("{}.json", s.kind_name()));
+        save(&s, &path).unwrap();
+        let back = load(&path).unwrap();
+        assert_eq!(back.kind_name(), s.kind_name());
+        assert_eq!(back.basis().triangulation(), s.basis().triangulation());
+        assert_eq!(back.basis().ps_triangles(), s.basis().ps_triangles());
+        assert_eq!(
+            back.basis().refinement().split_points(),
+            s.basis().refinement().split_points()
+        );
+        assert_eq!(back.control_points(), s.control_points());
+        let mut r = rng(61);
+        let t = s.basis().triangulation();
+        for _ in 0..20 {
+            let p = t.triangle_geometry(0).point(random_bary(&mut r));
+            assert_eq!(back.jet(p).unwrap(), s.jet(p).unwrap());
+        }
+        // Writing it again gives the same bytes.
+        assert_eq!(to_json_string(&back), to_json_string(&s));
+    }
+}
+
+fn functional_text() -> String {
+    to_json_string(&sample_surfaces()[0])
+}
+
+fn err(text: &str) -> FormatError {
+    from_json_str(text).expect_err("should be rejected")
+}
+
+#[test]
+fn bad_files_are_rejected_with_their_location() {
+    let good = functional_text();
+    // Truncated.
+    let e = err(&good[..good.len() / 2]);
+    assert!(matches!(e, FormatError::Syntax { line: 1, .. }), "{e}");
+    // Not JSON at all, and another JSON document.
+    assert!(matches!(err("hello"), FormatError::Syntax { .. }));
+    assert_eq!(
+        err(r#"{"type": "FeatureCollection"}"#),
+        FormatError::NotPssurf
+    );
+    assert_eq!(
+        err(&good.replace("\"version\":1", "\"version\":2")),
+        FormatError::UnsupportedVersion(2)
+    );
+    // Numbers out of range (JSON has no NaN; overflow is the way to write infinity).
+    let e = err(&good.replacen("[[0.0,0.0]", "[[1e999,0.0]", 1));
+    assert!(
+        matches!(&e, FormatError::Syntax { message, .. } if message.contains("out of range")),
+        "{e}"
+    );
+    // A wrong shape: a vertex with one coordinate.
+    let e = err(&good.replacen("[[0.0,0.0]", "[[0.0]", 1));
+    assert!(
+        matches!(&e, FormatError::Syntax { message, .. } if message.contains("length 2")),
+        "{e}"
+    );
+    // An unknown field.
+    let e = err(&good.replacen("\"kind\"", "\"colour\":1,\"kind\"", 1));
+    assert!(
+        matches!(&e, FormatError::Syntax { message, .. } if message.contains("colour")),
+        "{e}"
+    );
+    // A triangle index out of range, named by its path.
+    let v: serde_json::Value = serde_json::from_str(&good).unwrap();
+    let with = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = v.clone();
+        f(&mut v);
+        err(&v.to_string())
+    };
+    let e = with(&|v| v["domain"]["triangles"][2][1] = 99.into());
+    assert!(
+        matches!(&e, FormatError::Invalid { at, .. } if at == "domain.triangles[2]"),
+        "{e}"
+    );
+    let e = with(&|v| v["domain"]["triangles"][3] = v["domain"]["triangles"][2].clone());
+    assert!(
+        matches!(&e, FormatError::Invalid { at, .. } if at == "domain.triangles[3]"),
+        "{e}"
+    );
+    let e = with(&|v| v["domain"]["split"] = "orthocenter".into());
+    assert!(
+        matches!(&e, FormatError::Invalid { at, .. } if at == "domain.split"),
+        "{e}"
+    );
+    let e = with(&|v| v["ps_triangles"][4] = serde_json::json!([[0, 0], [0.1, 0], [0, 0.1]]));
+    assert!(
+        matches!(&e, FormatError::Invalid { at, .. } if at == "ps_triangles[4]"),
+        "{e}"
+    );
+    let e = with(&|v| {
+        v["control"].as_array_mut().unwrap().pop();
+    });
+    assert!(
+        matches!(&e, FormatError::Invalid { at, .. } if at == "control"),
+        "{e}"
+    );
+    let e = with(&|v| v["weights"] = serde_json::json!([]));
+    assert!(
+        matches!(&e, FormatError::Invalid { at, .. } if at == "weights"),
+        "{e}"
+    );
+    let e = with(&|v| v["kind"] = "nurps".into());
+    assert!(matches!(&e, FormatError::Invalid { .. }), "{e}");
+    // Zero weight in a NURPS file.
+    let nurps = to_json_string(&sample_surfaces()[2]);
+    let mut v: serde_json::Value = serde_json::from_str(&nurps).unwrap();
+    v["weights"][5][1] = 0.0.into();
+    let e = err(&v.to_string());
+    assert!(
+        matches!(&e, FormatError::Invalid { at, .. } if at == "weights[5][1]"),
+        "{e}"
+    );
+}
+
+#[test]
+fn failed_writes_keep_the_previous_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("keep.txt");
+    std::fs::write(&path, "old").unwrap();
+    let r: Result<(), std::io::Error> = atomic_write(&path, |w: &mut dyn std::io::Write| {
+        w.write_all(b"partial")?;
+        Err(std::io::Error::other("disk full"))
+    });
+    assert!(r.is_err());
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+    // No temporary file is left behind.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    // A missing directory is an I/O error naming the file.
+    let s = &sample_surfaces()[0];
+    let e = save(s, &dir.path().join("no/such/dir/s.json")).unwrap_err();
+    assert!(e.to_string().contains("s.json"), "{e}");
+    let e = load(&dir.path().join("missing.json")).unwrap_err();
+    assert!(matches!(e, FileError::Io { .. }));
+    let _ = Point2::new(0.0, 0.0);
+}

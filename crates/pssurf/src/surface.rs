@@ -1,0 +1,264 @@
+//! The one trait every surface kind implements — PS, UPS, NURPS, Bézier patches, and later
+//! NURBS — so that interrogation and display are written once.
+
+use std::sync::Arc;
+
+use nalgebra::{Point2, Vector3};
+use thiserror::Error;
+
+use crate::bezier::{BezierTriangle, Jet, RationalBezierTriangle};
+use crate::ps::{Nurps, PatchId, PsJet, PsSpline};
+
+/// A point of a surface with its first and second partial derivatives w.r.t. the parameters
+/// (u, v), and the polynomial piece it was computed on (for piecewise surfaces, whose second
+/// derivatives jump across piece boundaries).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceJet {
+    /// s, s_u, s_v, s_uu, s_uv, s_vv.
+    pub jet: Jet<Vector3<f64>>,
+    /// The piece (sub-triangle of Δ*), when the surface is piecewise.
+    pub patch: Option<PatchId>,
+}
+
+/// The parameter lies outside the surface's domain.
+#[derive(Clone, Copy, Debug, Error, PartialEq)]
+#[error("the parameter ({u}, {v}) lies outside the domain")]
+pub struct OutsideDomain {
+    /// u.
+    pub u: f64,
+    /// v.
+    pub v: f64,
+}
+
+/// Remembers where the previous evaluation happened, so that nearby points are found by a
+/// short walk. Start with `Cursor::default()` and reuse it along a grid or a curve.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Cursor(pub usize);
+
+/// A parametric surface s: Ω ⊂ R² → R³ with first and second derivatives.
+///
+/// Functional surfaces z = f(x, y) are their graphs (x, y, f(x, y)), so (u, v) = (x, y).
+pub trait ParametricSurface: Send + Sync {
+    /// The bounding box of the parameter domain Ω (min corner, max corner).
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>);
+
+    /// s and its derivatives at `uv`, starting the search at `cursor` (which is updated).
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain>;
+
+    /// s and its derivatives at `uv`.
+    fn jet(&self, uv: Point2<f64>) -> Result<SurfaceJet, OutsideDomain> {
+        self.jet_with(uv, &mut Cursor::default())
+    }
+
+    /// The point s(u, v).
+    fn point(&self, uv: Point2<f64>) -> Result<Vector3<f64>, OutsideDomain> {
+        Ok(self.jet(uv)?.jet.value)
+    }
+
+    /// The unit normal n = s_u × s_v / |s_u × s_v| (2.67), `None` at a singular point.
+    fn normal(&self, uv: Point2<f64>) -> Result<Option<Vector3<f64>>, OutsideDomain> {
+        let j = self.jet(uv)?.jet;
+        let n = j.dx.cross(&j.dy);
+        let size = j.dx.norm() * j.dy.norm();
+        Ok((n.norm() > 1e-14 * size && size > 0.0).then(|| n.normalize()))
+    }
+}
+
+impl<S: ParametricSurface + ?Sized> ParametricSurface for &S {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        (**self).domain_bounds()
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        (**self).jet_with(uv, cursor)
+    }
+}
+
+impl<S: ParametricSurface + ?Sized> ParametricSurface for Box<S> {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        (**self).domain_bounds()
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        (**self).jet_with(uv, cursor)
+    }
+}
+
+impl<S: ParametricSurface + ?Sized> ParametricSurface for Arc<S> {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        (**self).domain_bounds()
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        (**self).jet_with(uv, cursor)
+    }
+}
+
+/// The graph (x, y, f(x, y)) of a scalar jet.
+pub fn graph_jet(p: Point2<f64>, j: &Jet<f64>) -> Jet<Vector3<f64>> {
+    Jet {
+        value: Vector3::new(p.x, p.y, j.value),
+        dx: Vector3::new(1.0, 0.0, j.dx),
+        dy: Vector3::new(0.0, 1.0, j.dy),
+        dxx: Vector3::new(0.0, 0.0, j.dxx),
+        dxy: Vector3::new(0.0, 0.0, j.dxy),
+        dyy: Vector3::new(0.0, 0.0, j.dyy),
+    }
+}
+
+fn ps_locate<V: crate::vector::Vector>(
+    s: &PsSpline<V>,
+    uv: Point2<f64>,
+    cursor: &mut Cursor,
+) -> Result<PsJet<V>, OutsideDomain> {
+    let loc = s
+        .basis()
+        .locate(uv, cursor.0)
+        .ok_or(OutsideDomain { u: uv.x, v: uv.y })?;
+    cursor.0 = loc.triangle;
+    Ok(s.jet_at(&loc))
+}
+
+impl ParametricSurface for PsSpline<Vector3<f64>> {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        self.basis().triangulation().bounds()
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        let j = ps_locate(self, uv, cursor)?;
+        Ok(SurfaceJet {
+            jet: j.jet,
+            patch: Some(j.patch),
+        })
+    }
+}
+
+impl ParametricSurface for PsSpline<f64> {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        self.basis().triangulation().bounds()
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        let j = ps_locate(self, uv, cursor)?;
+        Ok(SurfaceJet {
+            jet: graph_jet(uv, &j.jet),
+            patch: Some(j.patch),
+        })
+    }
+}
+
+impl ParametricSurface for Nurps<Vector3<f64>> {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        self.basis().triangulation().bounds()
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        let j = self
+            .jet_from(uv, &mut cursor.0)
+            .map_err(|_| OutsideDomain { u: uv.x, v: uv.y })?;
+        Ok(SurfaceJet {
+            jet: j.jet,
+            patch: Some(j.patch),
+        })
+    }
+}
+
+fn triangle_bounds(t: &crate::geometry::Triangle2) -> (Point2<f64>, Point2<f64>) {
+    let xs = t.v.map(|p| p.x);
+    let ys = t.v.map(|p| p.y);
+    let min = |a: [f64; 3]| a[0].min(a[1]).min(a[2]);
+    let max = |a: [f64; 3]| a[0].max(a[1]).max(a[2]);
+    (Point2::new(min(xs), min(ys)), Point2::new(max(xs), max(ys)))
+}
+
+fn inside(t: &crate::geometry::Triangle2, uv: Point2<f64>) -> Result<(), OutsideDomain> {
+    if t.bary(uv)
+        .iter()
+        .all(|&b| b >= -crate::triangulation::INSIDE_TOLERANCE)
+    {
+        Ok(())
+    } else {
+        Err(OutsideDomain { u: uv.x, v: uv.y })
+    }
+}
+
+impl ParametricSurface for BezierTriangle<Vector3<f64>> {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        triangle_bounds(self.domain())
+    }
+    fn jet_with(&self, uv: Point2<f64>, _: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        inside(self.domain(), uv)?;
+        Ok(SurfaceJet {
+            jet: self.jet(uv),
+            patch: None,
+        })
+    }
+}
+
+impl ParametricSurface for RationalBezierTriangle<Vector3<f64>> {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        triangle_bounds(self.domain())
+    }
+    fn jet_with(&self, uv: Point2<f64>, _: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        inside(self.domain(), uv)?;
+        let jet = self
+            .jet(uv)
+            .map_err(|_| OutsideDomain { u: uv.x, v: uv.y })?;
+        Ok(SurfaceJet { jet, patch: None })
+    }
+}
+
+/// The PS surface kinds of a file, in one type that forwards the traits.
+#[derive(Clone, Debug)]
+pub enum PsSurface {
+    /// A functional PS-spline surface z = s(x, y) (2.49).
+    Functional(PsSpline<f64>),
+    /// A parametric PS-spline surface (2.64).
+    Parametric(PsSpline<Vector3<f64>>),
+    /// A NURPS surface (3.32).
+    Rational(Nurps<Vector3<f64>>),
+}
+
+impl PsSurface {
+    /// The kind's name as in the file format: "functional", "parametric" or "nurps".
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            PsSurface::Functional(_) => "functional",
+            PsSurface::Parametric(_) => "parametric",
+            PsSurface::Rational(_) => "nurps",
+        }
+    }
+
+    /// The basis (triangulation, refinement, PS-triangles).
+    pub fn basis(&self) -> &Arc<crate::ps::PsBasis> {
+        match self {
+            PsSurface::Functional(s) => s.basis(),
+            PsSurface::Parametric(s) => s.basis(),
+            PsSurface::Rational(s) => s.basis(),
+        }
+    }
+
+    /// The control points in R³ (for a functional surface (X_ij, Y_ij, c_ij), Definition 2.23).
+    pub fn control_points(&self) -> Vec<[Vector3<f64>; 3]> {
+        match self {
+            PsSurface::Functional(s) => s
+                .coefficients()
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    let q = s.basis().control_xy(i);
+                    std::array::from_fn(|j| Vector3::new(q[j].x, q[j].y, c[j]))
+                })
+                .collect(),
+            PsSurface::Parametric(s) => s.coefficients().to_vec(),
+            PsSurface::Rational(s) => s.points().to_vec(),
+        }
+    }
+}
+
+impl ParametricSurface for PsSurface {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        self.basis().triangulation().bounds()
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        match self {
+            PsSurface::Functional(s) => s.jet_with(uv, cursor),
+            PsSurface::Parametric(s) => s.jet_with(uv, cursor),
+            PsSurface::Rational(s) => s.jet_with(uv, cursor),
+        }
+    }
+}
