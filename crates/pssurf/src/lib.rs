@@ -21,9 +21,13 @@ pub mod geometry;
 pub mod io;
 pub mod ps;
 pub mod quadrature;
+pub mod scattered;
 pub mod surface;
 pub mod triangulation;
 pub mod vector;
+
+#[cfg(doctest)]
+mod readme_example;
 
 /// The most used types in one import.
 pub mod prelude {

@@ -91,6 +91,25 @@ impl<S: ParametricSurface + ?Sized> ParametricSurface for Arc<S> {
     }
 }
 
+/// Jets at many parameter points, in parallel on all cores. Points are processed in
+/// consecutive chunks with one cursor each, so grids and curves cost short walks.
+pub fn jets<S: ParametricSurface + ?Sized>(
+    surface: &S,
+    points: &[Point2<f64>],
+) -> Vec<Result<SurfaceJet, OutsideDomain>> {
+    use rayon::prelude::*;
+    points
+        .par_chunks(2048)
+        .flat_map_iter(|chunk| {
+            let mut cursor = Cursor::default();
+            chunk
+                .iter()
+                .map(|&p| surface.jet_with(p, &mut cursor))
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
 /// The graph (x, y, f(x, y)) of a scalar jet.
 pub fn graph_jet(p: Point2<f64>, j: &Jet<f64>) -> Jet<Vector3<f64>> {
     Jet {

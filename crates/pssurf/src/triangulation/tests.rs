@@ -176,3 +176,16 @@ fn non_convex_domains_locate_across_the_notch() {
     assert!(t.locate(p(1.5, 1.5)).is_none(), "the notch is outside");
     assert!(t.locate_from(p(1.5, 1.5), start).is_none());
 }
+
+#[test]
+fn delaunay_peels_zero_area_slivers_off_the_hull() {
+    // A lattice has many collinear points on its hull: Delaunay slivers of zero area.
+    let pts: Vec<_> = (0..60)
+        .map(|k| p((k as f64 * 0.618).fract(), (k as f64 * 0.377).fract()))
+        .collect();
+    let t = Triangulation::delaunay(pts).unwrap();
+    for s in 0..t.triangle_count() {
+        assert!(!t.triangle_geometry(s).is_degenerate());
+    }
+    assert_eq!(t.vertex_count(), 60);
+}

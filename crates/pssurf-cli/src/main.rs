@@ -1,0 +1,70 @@
+//! `pssurf`: design and interrogate Powell–Sabin spline surfaces from the command line.
+
+mod commands;
+mod output;
+mod points;
+mod table;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use nalgebra::Point2;
+
+/// Powell–Sabin spline surfaces: fit scattered data, evaluate, inspect.
+///
+/// A PS-spline is a C¹ piecewise quadratic on any triangulation, written in Dierckx's
+/// normalized B-spline form: three control points per vertex forming a control triangle
+/// tangent to the surface. Surfaces are stored in pssurf JSON files (docs/format.md).
+///
+/// Typical use:
+///   pssurf fit data.csv -o surf.json          # interpolate x,y,z (and optional zx,zy)
+///   pssurf info surf.json                     # what the file holds, PS-triangle quality
+///   pssurf eval surf.json --grid 200x200 -o grid.npy --derivatives
+#[derive(Parser, Debug)]
+#[command(name = "pssurf", version, about, long_about, max_term_width = 100)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Fit a functional PS-spline surface z = s(x, y) to scattered data by Hermite
+    /// interpolation (Delaunay triangulation unless triangles are given).
+    Fit(commands::fit::FitArgs),
+    /// Evaluate a surface (points, optionally first derivatives) at given parameters or on a
+    /// grid, to CSV or .npy.
+    Eval(commands::eval::EvalArgs),
+    /// Show what a surface file holds: kind, counts, domain, PS-triangle quality, validity.
+    Info(commands::info::InfoArgs),
+}
+
+/// A human description of the k-th evaluation point: its CSV row, or its grid position.
+pub(crate) fn describe_point(args: &points::PointArgs, k: usize, p: Point2<f64>) -> String {
+    match args.grid {
+        Some(g) if args.at.is_none() => format!(
+            "grid point ({}, {}) = ({}, {})",
+            k % g.nx,
+            k / g.nx,
+            p.x,
+            p.y
+        ),
+        _ => format!("row {} ({}, {})", k + 1, p.x, p.y),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Fit(a) => commands::fit::run(a),
+        Command::Eval(a) => commands::eval::run(a),
+        Command::Info(a) => commands::info::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

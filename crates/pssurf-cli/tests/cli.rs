@@ -1,0 +1,291 @@
+//! End-to-end tests of the `pssurf` binary.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn pssurf(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pssurf"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = pssurf(args);
+    assert!(
+        out.status.success(),
+        "pssurf {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn fails(args: &[&str]) -> String {
+    let out = pssurf(args);
+    assert!(!out.status.success(), "pssurf {args:?} should fail");
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        !err.contains("panicked"),
+        "panic instead of an error: {err}"
+    );
+    err
+}
+
+fn example(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/data")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().unwrap()
+}
+
+fn s(p: &Path) -> String {
+    p.display().to_string()
+}
+
+/// Parses a .npy file independently of the writer: magic, header dict, little-endian f64 data.
+fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..6], b"\x93NUMPY");
+    let (major, header_len, start) = match bytes[6] {
+        1 => (1, u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
+        v => (
+            v,
+            u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
+            12,
+        ),
+    };
+    assert!(major >= 1);
+    let header = std::str::from_utf8(&bytes[start..start + header_len]).unwrap();
+    assert!(header.contains("'descr': '<f8'"), "{header}");
+    assert!(header.contains("'fortran_order': False"), "{header}");
+    let shape_txt = &header[header.find("'shape': (").unwrap() + 10..];
+    let shape: Vec<usize> = shape_txt[..shape_txt.find(')').unwrap()]
+        .split(',')
+        .filter(|t| !t.trim().is_empty())
+        .map(|t| t.trim().parse().unwrap())
+        .collect();
+    let data: Vec<f64> = bytes[start + header_len..]
+        .chunks(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(data.len(), shape.iter().product::<usize>());
+    (shape, data)
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn fit_info_eval_on_the_example() {
+    let d = tmp();
+    let surf = d.path().join("franke.json");
+    ok(&["fit", &example("franke.csv"), "-o", &s(&surf)]);
+    let info = ok(&["info", &s(&surf)]);
+    assert!(
+        info.contains("functional") && info.contains("vertices             400"),
+        "{info}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(&["info", &s(&surf), "--json"])).unwrap();
+    assert_eq!(json["vertices"], 400);
+    assert_eq!(json["basis_functions"], 1200);
+    // Grid to .npy with derivatives: u,v,x,y,z + 6 columns; x = u, y = v for a function.
+    let npy = d.path().join("g.npy");
+    ok(&[
+        "eval",
+        &s(&surf),
+        "--grid",
+        "7x5",
+        "--derivatives",
+        "-o",
+        &s(&npy),
+    ]);
+    let (shape, data) = read_npy(&npy);
+    assert_eq!(shape, vec![35, 11]);
+    for row in data.chunks(11) {
+        assert_eq!(row[0], row[2]);
+        assert_eq!(row[1], row[3]);
+        assert_eq!((row[5], row[6], row[8], row[9]), (1.0, 0.0, 0.0, 1.0));
+        assert!(row[4].is_finite());
+    }
+    // The same values as CSV.
+    let csv = ok(&["eval", &s(&surf), "--grid", "7x5"]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines[0], "u,v,x,y,z");
+    assert_eq!(lines.len(), 36);
+    for (line, row) in lines[1..].iter().zip(data.chunks(11)) {
+        let z: f64 = line.split(',').nth(4).unwrap().parse().unwrap();
+        assert_eq!(z, row[4]);
+    }
+}
+
+#[test]
+fn quadratic_data_is_reproduced_through_the_cli() {
+    let d = tmp();
+    // With given gradients and triangles, and with estimated gradients on a Delaunay mesh.
+    let a = d.path().join("a.json");
+    ok(&[
+        "fit",
+        &example("saddle.csv"),
+        "--triangles",
+        &example("saddle_triangles.csv"),
+        "-o",
+        &s(&a),
+    ]);
+    let mut rows = String::from("x,y,z\n");
+    for k in 0..60 {
+        let (x, y) = ((k as f64 * 0.618).fract(), (k as f64 * 0.377).fract());
+        rows += &format!("{x},{y},{}\n", x * x - y * y + x * y);
+    }
+    let data = write(d.path(), "q.csv", &rows);
+    let b = d.path().join("b.json");
+    ok(&["fit", &s(&data), "-o", &s(&b)]);
+    // Centroids do not always give a valid refinement; the error says what to do.
+    let err = fails(&["fit", &s(&data), "-o", &s(&b), "--split", "centroid"]);
+    assert!(err.contains("incentres"), "{err}");
+    let pts = write(
+        d.path(),
+        "pts.csv",
+        "u,v\n0.1,0.2\n0.33,0.71\n0.5,0.5\n0.9,0.05\n",
+    );
+    for surf in [&a, &b] {
+        let out = ok(&["eval", &s(surf), "--at", &s(&pts), "--derivatives"]);
+        for line in out.lines().skip(1) {
+            let v: Vec<f64> = line.split(',').map(|t| t.parse().unwrap()).collect();
+            let (x, y) = (v[0], v[1]);
+            assert!((v[4] - (x * x - y * y + x * y)).abs() < 1e-13, "{line}");
+            assert!(
+                (v[7] - (2.0 * x + y)).abs() < 1e-12 && (v[10] - (x - 2.0 * y)).abs() < 1e-12,
+                "{line}"
+            );
+        }
+    }
+}
+
+#[test]
+fn points_outside_the_domain() {
+    let d = tmp();
+    let surf = d.path().join("s.json");
+    ok(&["fit", &example("saddle.csv"), "-o", &s(&surf)]);
+    let pts = write(d.path(), "pts.csv", "x,y\n0.5,0.5\n1.5,0.5\n0.25,0.25\n");
+    let out = d.path().join("out.csv");
+    std::fs::write(&out, "previous").unwrap();
+    let err = fails(&["eval", &s(&surf), "--at", &s(&pts), "-o", &s(&out)]);
+    assert!(err.contains("row 2") && err.contains("outside"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        "previous",
+        "failed runs keep the old file"
+    );
+    let skip = ok(&["eval", &s(&surf), "--at", &s(&pts), "--outside", "skip"]);
+    assert_eq!(skip.lines().count(), 3);
+    let nan = ok(&["eval", &s(&surf), "--at", &s(&pts), "--outside", "nan"]);
+    assert!(
+        nan.lines().nth(2).unwrap().ends_with("nan,nan,nan"),
+        "{nan}"
+    );
+}
+
+#[test]
+fn bad_inputs_give_clear_errors_and_no_output() {
+    let d = tmp();
+    let out = d.path().join("never.json");
+    let o = s(&out);
+    let cases: Vec<(String, &str)> = vec![
+        (
+            s(&write(d.path(), "a.csv", "x,y,z\n0,0,1\n1,0,abc\n0,1,2\n")),
+            "row 2, column z: `abc` is not a number",
+        ),
+        (
+            s(&write(d.path(), "b.csv", "x,y\n0,0\n1,0\n0,1\n")),
+            "needs columns x,y,z",
+        ),
+        (
+            s(&write(
+                d.path(),
+                "c.csv",
+                "x,y,z\n0,0,1\n1,0,1\n0,0,2\n0,1,2\n",
+            )),
+            "rows 1 and 3 have the same (x, y)",
+        ),
+        (
+            s(&write(d.path(), "e.csv", "x,y,z\n0,0,1\n1,1,1\n2,2,2\n")),
+            "collinear",
+        ),
+        (
+            s(&write(d.path(), "f.csv", "x,y,z\n0,0,NaN\n1,0,1\n0,1,2\n")),
+            "not a finite number",
+        ),
+        (
+            s(&write(
+                d.path(),
+                "g.csv",
+                "x,y,z,zx\n0,0,1,1\n1,0,1,1\n0,1,2,1\n",
+            )),
+            "both zx and zy",
+        ),
+        (s(&d.path().join("missing.csv")), "cannot read"),
+    ];
+    for (path, msg) in cases {
+        let err = fails(&["fit", &path, "-o", &o]);
+        assert!(err.contains(msg), "expected `{msg}` in: {err}");
+        assert!(!out.exists());
+    }
+    let data = write(d.path(), "ok.csv", "x,y,z\n0,0,1\n1,0,1\n0,1,2\n1,1,0\n");
+    let tris = write(d.path(), "t.csv", "0,1,2\n1,3,7\n");
+    let err = fails(&["fit", &s(&data), "--triangles", &s(&tris), "-o", &o]);
+    assert!(err.contains("refers to vertex 7"), "{err}");
+    let tris = write(d.path(), "t2.csv", "0,1,2\n0,1,2\n");
+    let err = fails(&["fit", &s(&data), "--triangles", &s(&tris), "-o", &o]);
+    assert!(err.contains("triangle 1 repeats triangle 0"), "{err}");
+    // A broken surface file: the location is named.
+    let bad = write(
+        d.path(),
+        "bad.json",
+        "{\"format\":\"pssurf\",\"version\":1,\"kind\":\"functional\",\"domain\":{\"vertices\":[[0,0],[1,0]",
+    );
+    let err = fails(&["info", &s(&bad)]);
+    assert!(
+        err.contains("bad.json") && err.contains("line 1, column"),
+        "{err}"
+    );
+    let err = fails(&["eval", &s(&bad), "--grid", "2x2"]);
+    assert!(err.contains("bad.json"), "{err}");
+    let err = fails(&["eval", &s(&bad), "--grid", "1x5"]);
+    assert!(err.contains("at least 2"), "{err}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn help_teaches_the_commands() {
+    let help = ok(&["--help"]);
+    for cmd in ["fit", "eval", "info"] {
+        assert!(help.contains(cmd), "{help}");
+    }
+    let fit = ok(&["fit", "--help"]);
+    assert!(
+        fit.contains("zx,zy") && fit.contains("--triangles"),
+        "{fit}"
+    );
+}
+
+#[test]
+fn the_example_in_docs_format_md_loads() {
+    let doc =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/format.md"))
+            .unwrap();
+    let start = doc.find("```json").unwrap() + 7;
+    let end = start + doc[start..].find("```").unwrap();
+    let d = tmp();
+    let f = write(d.path(), "doc.json", &doc[start..end]);
+    let info = ok(&["info", &s(&f)]);
+    assert!(info.contains("functional"), "{info}");
+}
