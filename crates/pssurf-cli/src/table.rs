@@ -68,11 +68,6 @@ impl Table {
             .iter()
             .position(|h| h.eq_ignore_ascii_case(name))
     }
-
-    /// The values of column `k`.
-    pub fn values(&self, k: usize) -> Vec<f64> {
-        self.rows.iter().map(|r| r[k]).collect()
-    }
 }
 
 /// Reads triangles as rows `i,j,k` of zero-based vertex indices, with or without a header.

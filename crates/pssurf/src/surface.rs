@@ -31,9 +31,10 @@ pub struct OutsideDomain {
 }
 
 /// Remembers where the previous evaluation happened, so that nearby points are found by a
-/// short walk. Start with `Cursor::default()` and reuse it along a grid or a curve.
+/// short walk. Start with `Cursor::default()` (no history: the first point is located from
+/// scratch) and reuse it along a grid or a curve.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Cursor(pub usize);
+pub struct Cursor(pub Option<usize>);
 
 /// A parametric surface s: Ω ⊂ R² → R³ with first and second derivatives.
 ///
@@ -98,16 +99,21 @@ pub fn jets<S: ParametricSurface + ?Sized>(
     points: &[Point2<f64>],
 ) -> Vec<Result<SurfaceJet, OutsideDomain>> {
     use rayon::prelude::*;
+    let unset = Err(OutsideDomain {
+        u: f64::NAN,
+        v: f64::NAN,
+    });
+    let mut out = vec![unset; points.len()];
     points
-        .par_chunks(2048)
-        .flat_map_iter(|chunk| {
+        .par_chunks(8192)
+        .zip(out.par_chunks_mut(8192))
+        .for_each(|(pts, res)| {
             let mut cursor = Cursor::default();
-            chunk
-                .iter()
-                .map(|&p| surface.jet_with(p, &mut cursor))
-                .collect::<Vec<_>>()
-        })
-        .collect()
+            for (r, &p) in res.iter_mut().zip(pts) {
+                *r = surface.jet_with(p, &mut cursor);
+            }
+        });
+    out
 }
 
 /// The graph (x, y, f(x, y)) of a scalar jet.
@@ -127,11 +133,14 @@ fn ps_locate<V: crate::vector::Vector>(
     uv: Point2<f64>,
     cursor: &mut Cursor,
 ) -> Result<PsJet<V>, OutsideDomain> {
-    let loc = s
-        .basis()
-        .locate(uv, cursor.0)
+    let basis = s.basis();
+    let hint = cursor
+        .0
+        .unwrap_or_else(|| basis.triangulation().start_triangle(uv));
+    let loc = basis
+        .locate(uv, hint)
         .ok_or(OutsideDomain { u: uv.x, v: uv.y })?;
-    cursor.0 = loc.triangle;
+    cursor.0 = Some(loc.triangle);
     Ok(s.jet_at(&loc))
 }
 
@@ -166,9 +175,13 @@ impl ParametricSurface for Nurps<Vector3<f64>> {
         self.basis().triangulation().bounds()
     }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        let mut hint = cursor
+            .0
+            .unwrap_or_else(|| self.basis().triangulation().start_triangle(uv));
         let j = self
-            .jet_from(uv, &mut cursor.0)
+            .jet_from(uv, &mut hint)
             .map_err(|_| OutsideDomain { u: uv.x, v: uv.y })?;
+        cursor.0 = Some(hint);
         Ok(SurfaceJet {
             jet: j.jet,
             patch: Some(j.patch),

@@ -63,8 +63,25 @@ pub fn run(args: &FitArgs) -> Result<()> {
         (None, None) => None,
         _ => bail!("{}: give both zx and zy, or neither", args.data.display()),
     };
-    let points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
-    let values = table.values(z);
+    let mut points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
+    let mut rows: Vec<&Vec<f64>> = table.rows.iter().collect();
+    if args.triangles.is_none() {
+        // Without given triangles the vertex order is ours to choose: a space-filling curve
+        // keeps neighbouring vertices close in memory, which makes every later step faster.
+        // (Duplicates are still reported by their data rows, below.)
+        if let Some((first, second)) = duplicate_rows(&points) {
+            bail!(
+                "{}: rows {} and {} have the same (x, y); remove one",
+                args.data.display(),
+                first + 1,
+                second + 1
+            );
+        }
+        let order = pssurf::triangulation::morton_order(&points);
+        points = order.iter().map(|&i| points[i as usize]).collect();
+        rows = order.iter().map(|&i| &table.rows[i as usize]).collect();
+    }
+    let values: Vec<f64> = rows.iter().map(|r| r[z]).collect();
     let tri = match &args.triangles {
         Some(path) => {
             let t = read_triangles(path, points.len())?;
@@ -83,7 +100,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
     };
     let (gradients, method) = match grads {
         Some((a, b)) => {
-            let g: Vec<(f64, f64)> = table.rows.iter().map(|r| (r[a], r[b])).collect();
+            let g: Vec<(f64, f64)> = rows.iter().map(|r| (r[a], r[b])).collect();
             (g, "given in the data (zx, zy)".to_string())
         }
         None => {
@@ -131,4 +148,20 @@ pub fn run(args: &FitArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// The first pair of data rows (zero-based) with the same coordinates.
+fn duplicate_rows(points: &[Point2<f64>]) -> Option<(usize, usize)> {
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_unstable_by(|&a, &b| {
+        points[a]
+            .x
+            .total_cmp(&points[b].x)
+            .then(points[a].y.total_cmp(&points[b].y))
+            .then(a.cmp(&b))
+    });
+    order
+        .windows(2)
+        .find(|w| points[w[0]] == points[w[1]])
+        .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
 }

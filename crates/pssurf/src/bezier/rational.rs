@@ -319,25 +319,23 @@ pub(crate) fn rational_quadratic_jet<V: Vector>(
     for i in 0..3 {
         b += b1[i] * (ws[i] / w);
     }
+    // Directions sum to zero, so contractions may use differences (as in `quadratic_jet`):
+    // single differences of Y_i = (w_i / w)(b_i − b) and double differences of
+    // X_ij = (W_ij / w)(P_ij − b), which stay small on small or thin triangles.
+    let y: [V; 3] = std::array::from_fn(|i| (b1[i] - b) * (w1[i] / w));
+    let om: [f64; 3] = std::array::from_fn(|i| w1[i] / w);
     let first = |d: Bary| {
-        let mut acc = V::zero();
-        let mut dw = 0.0;
-        for i in 0..3 {
-            acc += (b1[i] - b) * (d[i] * w1[i] / w);
-            dw += d[i] * w1[i] / w;
-        }
+        let acc = (y[1] - y[0]) * d[1] + (y[2] - y[0]) * d[2];
+        let dw = (om[1] - om[0]) * d[1] + (om[2] - om[0]) * d[2];
         (acc * m, dw * m)
     };
     let (bx, wx) = first(dx);
     let (by, wy) = first(dy);
+    let x = |i: usize, j: usize| (q[PAIR[i][j]] - b) * (qw[PAIR[i][j]] / w);
+    let dd = |i: usize, j: usize| x(i, j) - x(i, 0) - x(0, j) + x(0, 0);
+    let (d11, d12, d22) = (dd(1, 1), dd(1, 2), dd(2, 2));
     let second = |d: Bary, e: Bary, bd: V, wd: f64, be: V, we: f64| {
-        let mut acc = V::zero();
-        for i in 0..3 {
-            for j in 0..3 {
-                let k = PAIR[i][j];
-                acc += (q[k] - b) * (d[i] * e[j] * qw[k] / w);
-            }
-        }
+        let acc = d11 * (d[1] * e[1]) + d12 * (d[1] * e[2] + d[2] * e[1]) + d22 * (d[2] * e[2]);
         acc * (m * (m - 1.0)) - be * wd - bd * we
     };
     Ok(Jet {

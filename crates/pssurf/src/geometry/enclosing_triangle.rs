@@ -16,13 +16,16 @@
 //!    midpoint, X = 2 s_q, Y = 2 t_q — then q maximises s_q t_q and the area is the lower
 //!    bound 2 max s_q t_q |u × v| — or it is flush with an edge of P.
 //!
-//! Enumerating the O(n²) wedges and O(n) candidates per wedge gives the exact minimum in
-//! O(n³); PS-point sets have n ≈ 12, and wedges whose lower bound cannot beat the best
-//! triangle so far are skipped after O(n) work.
+//! In terms of the distances D_j(q) ≥ 0 of the vertices from the edge lines, with φ the
+//! wedge's opening angle, s_q = D_b(q)/sin φ and t_q = D_a(q)/sin φ, so the lower bound of
+//! a wedge is 2 max_q D_a(q) D_b(q) / sin φ: n multiplications once the n × n table of
+//! distances is known. Wedges are examined in increasing order of their lower bound and the
+//! search stops when the bound reaches the best area found, which usually happens after the
+//! first wedge. Cost: O(n²) for the table and the bounds, O(n) per examined wedge.
 
 use nalgebra::{Point2, Vector2};
 
-use super::hull::convex_hull;
+use super::hull::convex_hull_into;
 use super::{Triangle2, cross};
 
 /// The minimal-area triangle containing `points` (exact up to rounding), counter-clockwise.
@@ -37,7 +40,63 @@ use super::{Triangle2, cross};
 /// assert!((t.area() - 2.0).abs() < 1e-12);
 /// ```
 pub fn min_enclosing_triangle(points: &[Point2<f64>]) -> Option<Triangle2> {
-    let hull = convex_hull(points);
+    HULL.with(|h| {
+        let (sorted, hull) = &mut *h.borrow_mut();
+        sorted.clear();
+        sorted.extend_from_slice(points);
+        convex_hull_into(sorted, hull);
+        min_enclosing_triangle_of_hull(hull)
+    })
+}
+
+/// Buffers for the hull: a sorted copy of the points, and the hull vertices.
+type HullBuffers = (Vec<Point2<f64>>, Vec<Point2<f64>>);
+
+thread_local! {
+    static HULL: std::cell::RefCell<HullBuffers> = const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
+/// The third side of a wedge's best triangle, in distance coordinates: the line
+/// A'·D_b + B'·D_a = 1 (A', B' > 0).
+#[derive(Clone, Copy, Debug)]
+struct Third {
+    a: f64,
+    b: f64,
+}
+
+/// Reused buffers, one set per thread (this runs once per vertex of large meshes).
+#[derive(Default)]
+struct Scratch {
+    dirs: Vec<Vector2<f64>>,
+    dist: Vec<f64>,
+    wedges: Vec<(f64, u16, u16)>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
+}
+
+/// max_k a_k b_k (all entries ≥ 0), unrolled for instruction-level parallelism.
+#[inline]
+fn max_product(a: &[f64], b: &[f64]) -> f64 {
+    let mut m = [0.0f64; 4];
+    let chunks = a.len() / 4;
+    for c in 0..chunks {
+        for l in 0..4 {
+            let p = a[4 * c + l] * b[4 * c + l];
+            m[l] = if p > m[l] { p } else { m[l] };
+        }
+    }
+    for k in 4 * chunks..a.len() {
+        let p = a[k] * b[k];
+        m[0] = if p > m[0] { p } else { m[0] };
+    }
+    m[0].max(m[1]).max(m[2].max(m[3]))
+}
+
+/// As [`min_enclosing_triangle`] for a convex polygon given counter-clockwise without
+/// collinear vertices (as [`convex_hull`] returns it).
+pub fn min_enclosing_triangle_of_hull(hull: &[Point2<f64>]) -> Option<Triangle2> {
     let n = hull.len();
     if n < 3 {
         return None;
@@ -45,101 +104,149 @@ pub fn min_enclosing_triangle(points: &[Point2<f64>]) -> Option<Triangle2> {
     if n == 3 {
         return Some(Triangle2::new(hull[0], hull[1], hull[2]));
     }
-    let dirs: Vec<Vector2<f64>> = (0..n).map(|i| hull[(i + 1) % n] - hull[i]).collect();
-    let mut best: Option<(f64, Triangle2)> = None;
-    let mut st = vec![(0.0, 0.0); n];
-    for a in 0..n {
-        for b in a + 1..n {
-            let (da, db) = (dirs[a], dirs[b]);
-            let sin = cross(da, db);
-            if sin.abs() <= 1e-12 * da.norm() * db.norm() {
-                continue; // parallel edges: no wedge
-            }
-            // Apex: intersection of the two edge lines.
-            let w = hull[b] - hull[a];
-            let apex = hull[a] + da * (cross(w, db) / sin);
-            // Rays along each line, pointing into the other's inner half-plane (P is to the
-            // left of every edge direction, counter-clockwise).
-            let u = if cross(db, da) > 0.0 { da } else { -da };
-            let v = if cross(da, db) > 0.0 { db } else { -db };
-            let uv = cross(u, v);
-            // Wedge coordinates of every vertex.
-            let mut lb: f64 = 0.0;
-            let mut qstar = 0;
-            for (k, q) in hull.iter().enumerate() {
-                let d = q - apex;
-                let s = cross(d, v) / uv;
-                let t = cross(u, d) / uv;
-                st[k] = (s, t);
-                if s * t > lb {
-                    lb = s * t;
-                    qstar = k;
-                }
-            }
-            let scale = uv.abs();
-            let lower_bound = 2.0 * lb * scale;
-            if best.as_ref().is_some_and(|(area, _)| lower_bound >= *area) {
-                continue;
-            }
-            // Candidate 1: the third side touches q* at its midpoint.
-            // (None when every vertex lies on the two flush lines: no vertex can be a midpoint.)
-            let (sq, tq) = st[qstar];
-            let feasible = sq > 0.0
-                && tq > 0.0
-                && st
-                    .iter()
-                    .all(|&(s, t)| s / (2.0 * sq) + t / (2.0 * tq) <= 1.0 + 1e-12);
-            let third = if feasible {
-                Some((2.0 * sq, 2.0 * tq))
-            } else {
-                // Candidate 2: the third side flush with an edge (q1, q2) of P.
-                let mut best_xy: Option<(f64, f64)> = None;
-                for k in 0..n {
-                    let (s1, t1) = st[k];
-                    let (s2, t2) = st[(k + 1) % n];
-                    let det = s1 * t2 - s2 * t1;
-                    if det.abs() < 1e-300 {
-                        continue;
-                    }
-                    // a s + b t = 1 through both points: a = 1/X, b = 1/Y.
-                    let ia = (t2 - t1) / det;
-                    let ib = (s1 - s2) / det;
-                    if !(ia > 0.0 && ib > 0.0) {
-                        continue;
-                    }
-                    // P must lie on the apex side. By convexity one vertex off the line
-                    // decides it; check two, as one of them may be the apex itself (s = t = 0)
-                    // when the two flush edges are adjacent.
-                    let beyond = |(s, t): (f64, f64)| ia * s + ib * t > 1.0 + 1e-12;
-                    if beyond(st[(k + 2) % n]) || beyond(st[(k + n - 1) % n]) {
-                        continue;
-                    }
-                    let (x, y) = (1.0 / ia, 1.0 / ib);
-                    if best_xy.is_none_or(|(bx, by)| x * y < bx * by) {
-                        best_xy = Some((x, y));
-                    }
-                }
-                best_xy
-            };
-            let Some((x, y)) = third else { continue };
-            let area = 0.5 * x * y * scale;
-            if best.as_ref().is_none_or(|(b, _)| area < *b) {
-                let (p1, p2) = (apex + u * x, apex + v * y);
-                let tri = if cross(p1 - apex, p2 - apex) > 0.0 {
-                    Triangle2::new(apex, p1, p2)
-                } else {
-                    Triangle2::new(apex, p2, p1)
-                };
-                best = Some((area, tri));
+    SCRATCH.with(|s| {
+        let mut s = s.borrow_mut();
+        let Scratch { dirs, dist, wedges } = &mut *s;
+        // Unit edge directions; P lies to the left of each (inward normal (−d.y, d.x)).
+        dirs.clear();
+        dirs.extend((0..n).map(|i| (hull[(i + 1) % n] - hull[i]).normalize()));
+        // dist[j * n + k] = D_j(q_k), the distance of vertex k from the line of edge j.
+        dist.clear();
+        dist.resize(n * n, 0.0);
+        for j in 0..n {
+            let (d, o) = (dirs[j], hull[j]);
+            for k in 0..n {
+                dist[j * n + k] = cross(d, hull[k] - o).max(0.0);
             }
         }
+        // Lower bounds of all wedges, and the smallest.
+        wedges.clear();
+        let mut first = (f64::INFINITY, 0usize);
+        for a in 0..n {
+            for b in a + 1..n {
+                let sin = cross(dirs[a], dirs[b]).abs();
+                if sin <= 1e-12 {
+                    continue; // parallel edges: no wedge
+                }
+                let lower =
+                    2.0 * max_product(&dist[a * n..a * n + n], &dist[b * n..b * n + n]) / sin;
+                if lower < first.0 {
+                    first = (lower, wedges.len());
+                }
+                wedges.push((lower, a as u16, b as u16));
+            }
+        }
+        // The most promising wedge first; then only wedges whose bound beats the best.
+        let mut best: Option<(f64, usize, usize, Third)> = None;
+        let order = std::iter::once(first.1).chain((0..wedges.len()).filter(|&w| w != first.1));
+        for w in order {
+            let (lower, a, b) = wedges[w];
+            let (a, b) = (a as usize, b as usize);
+            if best.is_some_and(|(area, ..)| lower >= area) {
+                continue;
+            }
+            let sin = cross(dirs[a], dirs[b]).abs();
+            let (da, db) = (&dist[a * n..a * n + n], &dist[b * n..b * n + n]);
+            let qs = (0..n)
+                .max_by(|&i, &j| (da[i] * db[i]).total_cmp(&(da[j] * db[j])))
+                .unwrap_or(0);
+            if let Some((area, third)) = best_third_side(da, db, qs, lower, sin)
+                && best.is_none_or(|(b, ..)| area < b)
+            {
+                best = Some((area, a, b, third));
+            }
+        }
+        let (_, a, b, third) = best?;
+        Some(build_triangle(hull, dirs, a, b, third))
+    })
+}
+
+/// The best third side in the wedge of edges a and b (distances `da`, `db`): through the
+/// vertex q* maximising D_a D_b at its midpoint if that encloses P (area = `lower`), else
+/// flush with an edge of P.
+fn best_third_side(
+    da: &[f64],
+    db: &[f64],
+    qs: usize,
+    lower: f64,
+    sin: f64,
+) -> Option<(f64, Third)> {
+    let n = da.len();
+    let (sq, tq) = (db[qs], da[qs]);
+    if sq > 0.0 && tq > 0.0 {
+        // Midpoint line: D_b / (2 D_b*) + D_a / (2 D_a*) = 1.
+        let third = Third {
+            a: 0.5 / sq,
+            b: 0.5 / tq,
+        };
+        if (0..n).all(|k| third.a * db[k] + third.b * da[k] <= 1.0 + 1e-12) {
+            return Some((lower, third));
+        }
     }
-    best.map(|(_, t)| t)
+    // Flush with edge (k, k+1): the line through (σ_k, τ_k) and (σ_k1, τ_k1) (σ = D_b,
+    // τ = D_a) is A' σ + B' τ = 1 with A' = p_a / det, B' = p_b / det, p_a = τ_k1 − τ_k,
+    // p_b = σ_k − σ_k1, det = σ_k τ_k1 − σ_k1 τ_k; its area is det² / (2 p_a p_b sin φ).
+    // Candidates are compared without dividing.
+    let mut best: Option<(usize, f64, f64)> = None; // (k, det², p_a p_b)
+    for k in 0..n {
+        let k1 = if k + 1 == n { 0 } else { k + 1 };
+        let (s1, t1, s2, t2) = (db[k], da[k], db[k1], da[k1]);
+        let det = s1 * t2 - s2 * t1;
+        let (pa, pb) = (t2 - t1, s1 - s2);
+        if !(pa * det > 0.0 && pb * det > 0.0) {
+            continue; // A' and B' must be positive
+        }
+        // P must lie on the apex side: p_a σ + p_b τ ≤ det (for det > 0; reversed otherwise).
+        // By convexity one vertex off the line decides it; check two, as one of them may be
+        // the apex itself (D = 0) when the two flush edges are adjacent.
+        let beyond = |j: usize| (pa * db[j] + pb * da[j] - det) * det.signum() > 1e-12 * det.abs();
+        if beyond((k + 2) % n) || beyond((k + n - 1) % n) {
+            continue;
+        }
+        let (num, den) = (det * det, pa * pb);
+        if best.is_none_or(|(_, bn, bd)| num * bd < bn * den) {
+            best = Some((k, num, den));
+        }
+    }
+    let (k, num, den) = best?;
+    let k1 = (k + 1) % n;
+    let det = db[k] * da[k1] - db[k1] * da[k];
+    let third = Third {
+        a: (da[k1] - da[k]) / det,
+        b: (db[k] - db[k1]) / det,
+    };
+    Some((0.5 * num / (den * sin), third))
+}
+
+/// The triangle with sides on the lines of edges a and b and the third side `third`.
+fn build_triangle(
+    hull: &[Point2<f64>],
+    dirs: &[Vector2<f64>],
+    a: usize,
+    b: usize,
+    third: Third,
+) -> Triangle2 {
+    let (da, db) = (dirs[a], dirs[b]);
+    let sin_signed = cross(da, db);
+    let w = hull[b] - hull[a];
+    let apex = hull[a] + da * (cross(w, db) / sin_signed);
+    // Rays along each line, pointing into the other's inner half-plane.
+    let u = if cross(db, da) > 0.0 { da } else { -da };
+    let v = if cross(da, db) > 0.0 { db } else { -db };
+    let sin = sin_signed.abs();
+    let (x, y) = (1.0 / (third.a * sin), 1.0 / (third.b * sin));
+    let (p1, p2) = (apex + u * x, apex + v * y);
+    if cross(p1 - apex, p2 - apex) > 0.0 {
+        Triangle2::new(apex, p1, p2)
+    } else {
+        Triangle2::new(apex, p2, p1)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::convex_hull;
     use crate::test_util::*;
 
     /// Brute force over all triples of hull edge lines, plus the lower-bound-free

@@ -7,37 +7,55 @@ use super::orient;
 /// The convex hull of `points`, counter-clockwise, without repeated or collinear vertices
 /// (Andrew's monotone chain). Fewer than three vertices means the points are collinear.
 pub fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
-    let mut pts: Vec<Point2<f64>> = points.to_vec();
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    pts.dedup();
-    if pts.len() < 3 {
-        return pts;
+    let mut sorted = points.to_vec();
+    let mut hull = Vec::with_capacity(points.len() + 1);
+    convex_hull_into(&mut sorted, &mut hull);
+    hull
+}
+
+/// As [`convex_hull`], reusing buffers: `points` is sorted in place, the hull is written to
+/// `hull` (cleared first).
+pub fn convex_hull_into(points: &mut [Point2<f64>], hull: &mut Vec<Point2<f64>>) {
+    hull.clear();
+    points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    let n = points.len();
+    if n == 0 {
+        return;
     }
-    let scale = pts
+    let scale = points
         .iter()
-        .map(|p| (p - pts[0]).norm_squared())
+        .map(|p| (p - points[0]).norm_squared())
         .fold(0.0, f64::max);
-    // A turn counts only when it is clearly positive relative to the set's size.
+    // A turn counts only when it is clearly positive relative to the set's size; repeated
+    // points make no turn and are dropped with the collinear ones.
     let eps = 1e-14 * scale;
-    let mut hull: Vec<Point2<f64>> = Vec::with_capacity(2 * pts.len());
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for &p in iter {
-            while hull.len() >= start + 2
-                && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= eps
-            {
-                hull.pop();
-            }
+    let push = |hull: &mut Vec<Point2<f64>>, start: usize, p: Point2<f64>| {
+        while hull.len() >= start + 2
+            && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= eps
+        {
+            hull.pop();
+        }
+        if hull.len() < start + 1 || hull[hull.len() - 1] != p {
             hull.push(p);
         }
-        hull.pop();
+    };
+    for &p in points.iter() {
+        push(hull, 0, p);
     }
-    hull
+    let lower = hull.len();
+    hull.pop();
+    for &p in points.iter().rev() {
+        push(hull, lower - 1, p);
+    }
+    hull.pop();
+    if hull.len() < 3 {
+        // Collinear (or repeated) points: report the distinct extremes only.
+        hull.clear();
+        hull.push(points[0]);
+        if points[n - 1] != points[0] {
+            hull.push(points[n - 1]);
+        }
+    }
 }
 
 /// True when `p` lies in the closed convex polygon `hull` (counter-clockwise), within a

@@ -8,7 +8,7 @@ use super::net::{self, NET_LEN, NetStencil, SUB_ORDINATES};
 use super::ps_triangles::{PsTriangleChoice, ps_triangles};
 use super::refinement::{PsRefinement, SplitRule};
 use crate::geometry::{Bary, BaryMap, Triangle2, midpoint};
-use crate::triangulation::{Location, Triangulation};
+use crate::triangulation::{INSIDE_TOLERANCE, Location, Triangulation};
 use crate::vector::Vector;
 
 /// The PS B-spline basis on a triangulation: the triangulation Δ, its PS-refinement Δ*, and
@@ -23,9 +23,67 @@ pub struct PsBasis {
     refinement: PsRefinement,
     ps_tris: Vec<Triangle2>,
     ps_maps: Vec<BaryMap>,
-    /// Gradients of the barycentric coordinates of each triangle of Δ.
-    grads: Vec<[Vector2<f64>; 3]>,
+    /// Per triangle of Δ, what evaluation needs, precomputed so that locating a point in
+    /// Δ* takes no division.
+    geom: Vec<EvalGeom>,
 }
+
+/// The per-triangle data of the evaluation hot path: the barycentric map about V_0
+/// (τ_1 = g_1·(p − V_0), τ_2 = g_2·(p − V_0), τ_0 = 1 − τ_1 − τ_2), Z's coordinates a_i and
+/// their inverses, and λ_c, 1/λ_c, 1/(1 − λ_c) of the edge points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct EvalGeom {
+    origin: [f64; 2],
+    /// ∇τ_0, ∇τ_1, ∇τ_2.
+    g: [[f64; 2]; 3],
+    a: [f64; 3],
+    inv_a: [f64; 3],
+    lambda: [f64; 3],
+    inv_lambda: [f64; 3],
+    inv_rest: [f64; 3],
+}
+
+impl EvalGeom {
+    fn new(tri: &Triangulation, refinement: &PsRefinement, t: usize) -> Self {
+        let m = tri
+            .triangle_geometry(t)
+            .bary_map()
+            .expect("validated triangle");
+        let a = refinement.z_bary(t);
+        let l = refinement.lambda(t);
+        EvalGeom {
+            origin: [m.origin.x, m.origin.y],
+            g: [
+                [-m.g[1].x - m.g[2].x, -m.g[1].y - m.g[2].y],
+                [m.g[1].x, m.g[1].y],
+                [m.g[2].x, m.g[2].y],
+            ],
+            a,
+            inv_a: a.map(|x| 1.0 / x),
+            lambda: l,
+            inv_lambda: l.map(|x| 1.0 / x),
+            inv_rest: l.map(|x| 1.0 / (1.0 - x)),
+        }
+    }
+
+    /// Barycentric coordinates of p.
+    #[inline(always)]
+    fn bary(&self, p: Point2<f64>) -> Bary {
+        let (x, y) = (p.x - self.origin[0], p.y - self.origin[1]);
+        let t1 = self.g[1][0] * x + self.g[1][1] * y;
+        let t2 = self.g[2][0] * x + self.g[2][1] * y;
+        [1.0 - t1 - t2, t1, t2]
+    }
+
+    /// Gradient of barycentric coordinate i.
+    #[inline(always)]
+    fn grad(&self, i: usize) -> Vector2<f64> {
+        Vector2::new(self.g[i][0], self.g[i][1])
+    }
+}
+
+/// Steps of the evaluation walk before falling back to the triangulation's locator.
+const MAX_WALK: usize = 64;
 
 /// Where a domain point lies in Δ*: the triangle of Δ, which of its six sub-triangles, the
 /// barycentric coordinates there and the sub-triangle's unit directions d_x, d_y (2.18)–(2.19).
@@ -77,22 +135,17 @@ impl PsBasis {
                     .ok_or(PsError::DegeneratePsTriangle { vertex: i })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let grads = (0..tri.triangle_count())
+        let geom = (0..tri.triangle_count())
             .into_par_iter()
             .with_min_len(1024)
-            .map(|t| {
-                tri.triangle_geometry(t)
-                    .bary_map()
-                    .expect("validated triangle")
-                    .g
-            })
+            .map(|t| EvalGeom::new(&tri, &refinement, t))
             .collect();
         Ok(PsBasis {
             tri,
             refinement,
             ps_tris,
             ps_maps,
-            grads,
+            geom,
         })
     }
 
@@ -183,55 +236,91 @@ impl PsBasis {
         self.stencil(t).apply([ctrl[v[0]], ctrl[v[1]], ctrl[v[2]]])
     }
 
-    /// Where `p` lies in Δ*, searching from triangle `hint` (any triangle; 0 is fine).
-    #[inline]
+    /// Where `p` lies in Δ*, walking from triangle `hint` (any triangle; a nearby one makes
+    /// it fast), or `None` outside the domain.
+    #[inline(always)]
     pub fn locate(&self, p: Point2<f64>, hint: usize) -> Option<SubLocation> {
-        let loc = self.tri.locate_from(p, hint)?;
+        let mut t = hint.min(self.geom.len() - 1);
+        for _ in 0..MAX_WALK {
+            let tau = self.geom[t].bary(p);
+            let (mut i, mut m) = (0, tau[0]);
+            if tau[1] < m {
+                (i, m) = (1, tau[1]);
+            }
+            if tau[2] < m {
+                (i, m) = (2, tau[2]);
+            }
+            if m >= -INSIDE_TOLERANCE {
+                return Some(self.sub_locate_in(t, tau));
+            }
+            match self.tri.neighbor(t, i) {
+                Some(n) => t = n,
+                None => break,
+            }
+        }
+        self.locate_exhaustive(p)
+    }
+
+    /// The walk left the domain or took too long: ask the triangulation's R-tree.
+    #[cold]
+    #[inline(never)]
+    fn locate_exhaustive(&self, p: Point2<f64>) -> Option<SubLocation> {
+        let loc = self.tri.locate_exhaustive(p)?;
         Some(self.sub_locate(loc))
     }
 
-    /// Refines a location in Δ to the sub-triangle of Δ* containing the point, with the
-    /// barycentric coordinates there. With ρ_i = τ_i / a_i, the point lies in the sector
-    /// (V_e, V_{e+1}, Z) opposite the vertex with the smallest ρ; the segment Z R_e splits the
-    /// sector into the two sub-triangles.
+    /// Where `p` lies in Δ*, for a point unrelated to the previous one (starts from the
+    /// triangulation's bucket grid).
+    pub fn locate_any(&self, p: Point2<f64>) -> Option<SubLocation> {
+        self.locate(p, self.tri.start_triangle(p))
+    }
+
+    /// Refines a location in Δ to the sub-triangle of Δ* containing the point.
     #[inline]
     pub fn sub_locate(&self, loc: Location) -> SubLocation {
-        let t = loc.triangle;
-        let tau = loc.bary;
-        let a = self.refinement.z_bary(t);
-        let g = &self.grads[t];
-        let rho = [tau[0] / a[0], tau[1] / a[1], tau[2] / a[2]];
-        let k = if rho[0] <= rho[1] && rho[0] <= rho[2] {
-            0
-        } else if rho[1] <= rho[2] {
-            1
-        } else {
-            2
-        };
-        let e = (k + 1) % 3;
-        let e1 = (k + 2) % 3;
+        self.sub_locate_in(loc.triangle, loc.bary)
+    }
+
+    /// The sub-triangle of triangle `t` containing the point with barycentric coordinates τ,
+    /// and the coordinates there. With ρ_i = τ_i / a_i, the point lies in the sector
+    /// (V_e, V_{e+1}, Z) opposite the vertex with the smallest ρ (there μ_Z = min ρ); the
+    /// segment Z R_e splits the sector into the two sub-triangles. Only multiplications by
+    /// precomputed inverses are needed.
+    #[inline(always)]
+    fn sub_locate_in(&self, t: usize, tau: Bary) -> SubLocation {
+        let g = &self.geom[t];
+        let rho = [
+            tau[0] * g.inv_a[0],
+            tau[1] * g.inv_a[1],
+            tau[2] * g.inv_a[2],
+        ];
+        // Branch-free selections: which sub-triangle a grid point falls in changes too often
+        // for branch prediction.
+        let k01 = if rho[1] < rho[0] { 1 } else { 0 };
+        let k = if rho[2] < rho[k01] { 2 } else { k01 };
+        const NEXT: [usize; 3] = [1, 2, 0];
+        let e = NEXT[k];
+        let e1 = NEXT[e];
         let mz = rho[k];
-        let gz = g[k] / a[k];
-        let me = tau[e] - a[e] * mz;
-        let me1 = tau[e1] - a[e1] * mz;
-        let ge = g[e] - gz * a[e];
-        let ge1 = g[e1] - gz * a[e1];
-        let l = self.refinement.lambda(t)[e];
-        let (sub, s1, s2, g1, g2) = if me * (1.0 - l) >= me1 * l {
-            let s2 = me1 / (1.0 - l);
-            let g2 = ge1 / (1.0 - l);
-            (2 * e, me - l * s2, s2, ge - g2 * l, g2)
-        } else {
-            let s1 = me / l;
-            let g1 = ge / l;
-            (
-                2 * e + 1,
-                s1,
-                me1 - (1.0 - l) * s1,
-                g1,
-                ge1 - g1 * (1.0 - l),
-            )
-        };
+        let gz = g.grad(k) * g.inv_a[k];
+        let me = tau[e] - g.a[e] * mz;
+        let me1 = tau[e1] - g.a[e1] * mz;
+        let ge = g.grad(e) - gz * g.a[e];
+        let ge1 = g.grad(e1) - gz * g.a[e1];
+        let l = g.lambda[e];
+        // Both halves' coordinates, blended by the side of the segment Z R_e.
+        let first = if me * (1.0 - l) >= me1 * l { 1.0 } else { 0.0 };
+        let s2a = me1 * g.inv_rest[e];
+        let g2a = ge1 * g.inv_rest[e];
+        let s1b = me * g.inv_lambda[e];
+        let g1b = ge * g.inv_lambda[e];
+        let (s1, s2) = (
+            first * (me - l * s2a) + (1.0 - first) * s1b,
+            first * s2a + (1.0 - first) * (me1 - (1.0 - l) * s1b),
+        );
+        let g1 = (ge - g2a * l) * first + g1b * (1.0 - first);
+        let g2 = g2a * first + (ge1 - g1b * (1.0 - l)) * (1.0 - first);
+        let sub = 2 * e + 1 - first as usize;
         SubLocation {
             triangle: t,
             sub,

@@ -144,7 +144,8 @@ impl<V: Vector> Nurps<V> {
 
     /// s(p) with derivatives up to order two, or an error outside the domain.
     pub fn jet(&self, p: Point2<f64>) -> Result<PsJet<V>, PsError> {
-        self.jet_from(p, &mut 0)
+        let mut hint = self.basis.triangulation().start_triangle(p);
+        self.jet_from(p, &mut hint)
     }
 
     /// As [`Nurps::jet`], walking from the triangle in `hint` and updating it.

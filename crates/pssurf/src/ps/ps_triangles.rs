@@ -23,22 +23,37 @@ pub enum PsTriangleChoice {
 }
 
 /// The PS-points of vertex V_i (Definition 2.19): V_i itself and, on every edge of Δ* at V_i,
-/// the Bézier domain point nearest V_i — the midpoints of V_i R and V_i Z for the edge points
-/// R of V_i's edges and the interior points Z of its molecule.
+/// the Bézier domain point nearest V_i — the midpoints of V_i R for the edge points R of V_i's
+/// edges and of V_i Z for the interior points Z of its molecule. Each point is listed once.
 pub fn ps_points(tri: &Triangulation, refinement: &PsRefinement, i: usize) -> Vec<Point2<f64>> {
+    let mut pts = Vec::with_capacity(1 + 2 * tri.molecule_number(i) + 1);
+    ps_points_into(tri, refinement, i, &mut pts);
+    pts
+}
+
+/// As [`ps_points`], into a reusable buffer (cleared first).
+pub fn ps_points_into(
+    tri: &Triangulation,
+    refinement: &PsRefinement,
+    i: usize,
+    pts: &mut Vec<Point2<f64>>,
+) {
+    pts.clear();
     let vi = tri.vertex(i);
-    let mut pts = Vec::with_capacity(1 + 3 * tri.molecule_number(i));
     pts.push(vi);
     for &t in tri.molecule(i) {
         let t = t as usize;
         let c = tri
             .corner_of(t, i)
             .expect("molecule triangle has the vertex");
+        // The edge to the next vertex; the edge from the previous vertex is some other
+        // molecule triangle's next edge, unless it lies on the boundary.
         pts.push(midpoint(vi, refinement.edge_point(tri, t, c)));
-        pts.push(midpoint(vi, refinement.edge_point(tri, t, (c + 2) % 3)));
         pts.push(midpoint(vi, refinement.z(t)));
+        if tri.is_boundary_edge(t, super::refinement::edge_to_local((c + 2) % 3)) {
+            pts.push(midpoint(vi, refinement.edge_point(tri, t, (c + 2) % 3)));
+        }
     }
-    pts
 }
 
 /// The PS-triangles of all vertices.
@@ -48,14 +63,32 @@ pub fn ps_triangles(
     choice: &PsTriangleChoice,
 ) -> Result<Vec<Triangle2>, PsError> {
     match choice {
-        PsTriangleChoice::Optimal => (0..tri.vertex_count())
-            .into_par_iter()
-            .with_min_len(256)
-            .map(|i| {
-                let pts = ps_points(tri, refinement, i);
-                min_enclosing_triangle(&pts).ok_or(PsError::DegeneratePsTriangle { vertex: i })
-            })
-            .collect(),
+        PsTriangleChoice::Optimal => {
+            // In spatial order (neighbouring vertices share triangles, so caches stay warm),
+            // then scattered back to vertex order.
+            let order = tri.spatial_order();
+            let found: Vec<Result<Triangle2, PsError>> = order
+                .par_iter()
+                .with_min_len(256)
+                .map_init(
+                    || Vec::with_capacity(32),
+                    |pts, &i| {
+                        let i = i as usize;
+                        ps_points_into(tri, refinement, i, pts);
+                        min_enclosing_triangle(pts)
+                            .ok_or(PsError::DegeneratePsTriangle { vertex: i })
+                    },
+                )
+                .collect();
+            let mut out = vec![
+                Triangle2::new(Point2::origin(), Point2::origin(), Point2::origin());
+                order.len()
+            ];
+            for (&i, t) in order.iter().zip(found) {
+                out[i as usize] = t?;
+            }
+            Ok(out)
+        }
         PsTriangleChoice::Given(given) => {
             if given.len() != tri.vertex_count() {
                 return Err(PsError::WrongCount {

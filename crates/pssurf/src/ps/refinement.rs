@@ -2,6 +2,8 @@
 
 use nalgebra::Point2;
 
+use rayon::prelude::*;
+
 use super::PsError;
 use crate::geometry::{Triangle2, orient};
 use crate::triangulation::Triangulation;
@@ -65,34 +67,32 @@ impl PsRefinement {
                 found: z.len(),
             });
         }
-        let mut z_bary = Vec::with_capacity(z.len());
-        for (t, &p) in z.iter().enumerate() {
-            let b = tri.triangle_geometry(t).bary(p);
-            if !b.iter().all(|&x| x > STRICT) {
-                return Err(PsError::SplitPointOutside { triangle: t });
-            }
-            z_bary.push(b);
-        }
-        let mut lambda = vec![[0.5; 3]; z.len()];
-        for t in 0..tri.triangle_count() {
-            let v = tri.triangle(t);
-            for c in 0..3 {
-                let Some(s) = tri.neighbor(t, edge_to_local(c)) else {
-                    continue; // boundary edge: the midpoint
-                };
-                let (a, b) = (tri.vertex(v[c]), tri.vertex(v[(c + 1) % 3]));
-                let (oa, ob) = (orient(z[t], z[s], a), orient(z[t], z[s], b));
-                let mu = oa / (oa - ob);
-                if !(mu > STRICT && mu < 1.0 - STRICT) {
-                    return Err(PsError::EdgePointOutside {
-                        triangle: t,
-                        neighbor: s,
-                        edge: (v[c], v[(c + 1) % 3]),
-                    });
+        let z_bary: Vec<[f64; 3]> = z
+            .par_iter()
+            .enumerate()
+            .with_min_len(1024)
+            .map(|(t, &p)| {
+                let b = tri.triangle_geometry(t).bary(p);
+                if b.iter().all(|&x| x > STRICT) {
+                    Ok(b)
+                } else {
+                    Err(PsError::SplitPointOutside { triangle: t })
                 }
-                lambda[t][c] = 1.0 - mu;
-            }
-        }
+            })
+            .collect::<Result<_, _>>()?;
+        let lambda = (0..tri.triangle_count())
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|t| {
+                let mut l = [0.5; 3];
+                for (c, lc) in l.iter_mut().enumerate() {
+                    if let Some(mu) = edge_parameter(tri, &z, t, c)? {
+                        *lc = 1.0 - mu;
+                    }
+                }
+                Ok(l)
+            })
+            .collect::<Result<_, PsError>>()?;
         Ok(PsRefinement {
             rule: None,
             z,
@@ -144,6 +144,38 @@ impl PsRefinement {
             }
         })
     }
+}
+
+/// Where the segment joining the split points of triangle `t` and its neighbour across edge
+/// `c` crosses that edge: R = V_c + μ (V_{c+1} − V_c). `None` on the boundary. The value is
+/// computed once per edge — by the triangle with the smaller index — so that both triangles
+/// see exactly the same point.
+fn edge_parameter(
+    tri: &Triangulation,
+    z: &[Point2<f64>],
+    t: usize,
+    c: usize,
+) -> Result<Option<f64>, PsError> {
+    let Some(s) = tri.neighbor(t, edge_to_local(c)) else {
+        return Ok(None);
+    };
+    let v = tri.triangle(t);
+    let (a, b) = (v[c], v[(c + 1) % 3]);
+    let (first, second, from, to) = if t < s { (t, s, a, b) } else { (s, t, b, a) };
+    let (pa, pb) = (tri.vertex(from), tri.vertex(to));
+    let (oa, ob) = (
+        orient(z[first], z[second], pa),
+        orient(z[first], z[second], pb),
+    );
+    let mu = oa / (oa - ob);
+    if !(mu > STRICT && mu < 1.0 - STRICT) {
+        return Err(PsError::EdgePointOutside {
+            triangle: t.min(s),
+            neighbor: t.max(s),
+            edge: (from, to),
+        });
+    }
+    Ok(Some(if t < s { mu } else { 1.0 - mu }))
 }
 
 /// The triangulation's local index (the edge opposite a vertex) of PS edge `c` (V_c → V_{c+1}).

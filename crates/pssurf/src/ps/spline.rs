@@ -158,6 +158,27 @@ impl<V: Vector> PsSpline<V> {
         }
     }
 
+    /// The value and the gradient (∂s/∂x, ∂s/∂y) at a located point (Algorithm 2.2, step 4).
+    #[inline]
+    pub fn gradient_at(&self, loc: &SubLocation) -> (V, V, V) {
+        let n = &self.nets[loc.triangle];
+        let i = &SUB_ORDINATES[loc.sub];
+        let t = loc.bary;
+        let b0 = n[i[0]] * t[0] + n[i[1]] * t[1] + n[i[2]] * t[2];
+        let b1 = n[i[1]] * t[0] + n[i[3]] * t[1] + n[i[4]] * t[2];
+        let b2 = n[i[2]] * t[0] + n[i[4]] * t[1] + n[i[5]] * t[2];
+        let value = b0 * t[0] + b1 * t[1] + b2 * t[2];
+        let (e1, e2) = (b1 - b0, b2 - b0);
+        let gx = (e1 * loc.dx[1] + e2 * loc.dx[2]) * 2.0;
+        let gy = (e1 * loc.dy[1] + e2 * loc.dy[2]) * 2.0;
+        (value, gx, gy)
+    }
+
+    /// Values and gradients at many points, in parallel (see [`PsSpline::jets`]).
+    pub fn gradients(&self, points: &[Point2<f64>]) -> Vec<Option<(V, V, V)>> {
+        self.map_points(points, |ev, p| ev.gradient(p))
+    }
+
     /// The value at a located point.
     #[inline]
     pub fn value_at(&self, loc: &SubLocation) -> V {
@@ -174,7 +195,7 @@ impl<V: Vector> PsSpline<V> {
     pub fn eval(&self, p: Point2<f64>) -> Result<V, PsError> {
         let loc = self
             .basis
-            .locate(p, 0)
+            .locate_any(p)
             .ok_or(PsError::OutsideDomain { x: p.x, y: p.y })?;
         Ok(self.value_at(&loc))
     }
@@ -183,7 +204,7 @@ impl<V: Vector> PsSpline<V> {
     pub fn jet(&self, p: Point2<f64>) -> Result<PsJet<V>, PsError> {
         let loc = self
             .basis
-            .locate(p, 0)
+            .locate_any(p)
             .ok_or(PsError::OutsideDomain { x: p.x, y: p.y })?;
         Ok(self.jet_at(&loc))
     }
@@ -203,15 +224,41 @@ impl<V: Vector> PsSpline<V> {
         }
     }
 
+    /// An evaluator whose first walk starts near `p` (the bucket grid's guess): use it when
+    /// the first point is far from triangle 0.
+    pub fn evaluator_near(&self, p: Point2<f64>) -> Evaluator<'_, V> {
+        Evaluator {
+            spline: self,
+            hint: self.basis.triangulation().start_triangle(p),
+        }
+    }
+
     /// Jets at many points, in parallel on all cores (each thread walks through its share of
     /// consecutive points); `None` for points outside the domain.
     pub fn jets(&self, points: &[Point2<f64>]) -> Vec<Option<PsJet<V>>> {
+        self.map_points(points, |ev, p| ev.jet(p))
+    }
+
+    /// `f(evaluator, p)` for every point, in parallel: consecutive chunks, one walking
+    /// evaluator each, results written in place.
+    pub fn map_points<T: Send>(
+        &self,
+        points: &[Point2<f64>],
+        f: impl Fn(&mut Evaluator<'_, V>, Point2<f64>) -> T + Sync,
+    ) -> Vec<T> {
+        let mut out: Vec<Option<T>> = Vec::with_capacity(points.len());
+        out.resize_with(points.len(), || None);
         points
-            .par_chunks(4096)
-            .flat_map_iter(|chunk| {
-                let mut ev = self.evaluator();
-                chunk.iter().map(move |&p| ev.jet(p)).collect::<Vec<_>>()
-            })
+            .par_chunks(8192)
+            .zip(out.par_chunks_mut(8192))
+            .for_each(|(pts, res)| {
+                let mut ev = self.evaluator_near(pts[0]);
+                for (r, &p) in res.iter_mut().zip(pts) {
+                    *r = Some(f(&mut ev, p));
+                }
+            });
+        out.into_iter()
+            .map(|r| r.expect("every point mapped"))
             .collect()
     }
 
@@ -234,6 +281,7 @@ impl<V: Vector> PsSpline<V> {
 #[derive(Clone, Debug)]
 pub struct Evaluator<'a, V> {
     spline: &'a PsSpline<V>,
+    /// The triangle of the previous point (where the next walk starts).
     hint: usize,
 }
 
@@ -250,6 +298,12 @@ impl<V: Vector> Evaluator<'_, V> {
     #[inline]
     pub fn value(&mut self, p: Point2<f64>) -> Option<V> {
         self.locate(p).map(|l| self.spline.value_at(&l))
+    }
+
+    /// The value and gradient at `p`.
+    #[inline]
+    pub fn gradient(&mut self, p: Point2<f64>) -> Option<(V, V, V)> {
+        self.locate(p).map(|l| self.spline.gradient_at(&l))
     }
 
     /// The jet at `p`.

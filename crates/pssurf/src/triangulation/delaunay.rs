@@ -31,6 +31,18 @@ pub(super) fn delaunay(points: Vec<Point2<f64>>) -> Result<Triangulation, Triang
     if triangles.is_empty() {
         return Err(TriangulationError::CollinearPoints);
     }
+    // Triangles in the order of a space-filling curve through their centroids: neighbouring
+    // triangles get nearby indices, so per-triangle arrays are traversed cache-friendly.
+    let centroids: Vec<Point2<f64>> = triangles
+        .iter()
+        .map(|t| {
+            Point2::from((points[t[0]].coords + points[t[1]].coords + points[t[2]].coords) / 3.0)
+        })
+        .collect();
+    let triangles: Vec<[usize; 3]> = super::morton_order(&centroids)
+        .into_iter()
+        .map(|k| triangles[k as usize])
+        .collect();
     Triangulation::try_new(points, triangles)
 }
 

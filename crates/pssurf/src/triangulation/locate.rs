@@ -1,4 +1,6 @@
-//! Point location: a walk from a hint for coherent queries, an R-tree for random ones.
+//! Point location: a walk from a hint for coherent queries; for random queries a bucket grid
+//! gives a nearby start ("jump and walk"), with an R-tree as the exact fallback where a walk
+//! leaves a non-convex domain.
 
 use nalgebra::Point2;
 use rstar::RTree;
@@ -12,7 +14,7 @@ use crate::geometry::{Bary, cross};
 pub const INSIDE_TOLERANCE: f64 = 1e-12;
 
 /// The most walking steps before giving up and asking the R-tree.
-const MAX_WALK: usize = 48;
+const MAX_WALK: usize = 64;
 
 /// Where a point lies: a triangle and the point's barycentric coordinates in it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,36 +25,140 @@ pub struct Location {
     pub bary: Bary,
 }
 
-/// An R-tree of the triangles' (slightly padded) bounding boxes.
+/// A uniform grid over the bounding box whose cells name a triangle at (or near) their centre.
+#[derive(Debug)]
+pub(super) struct Buckets {
+    origin: Point2<f64>,
+    inv_cell: [f64; 2],
+    n: [usize; 2],
+    start: Vec<u32>,
+}
+
+/// The spatial indexes, built on first use.
 #[derive(Debug)]
 pub(super) struct Locator {
-    tree: RTree<GeomWithData<Rectangle<[f64; 2]>, u32>>,
+    buckets: Buckets,
+    tree: std::sync::OnceLock<RTree<GeomWithData<Rectangle<[f64; 2]>, u32>>>,
+}
+
+impl Buckets {
+    fn new(t: &Triangulation) -> Self {
+        let (lo, hi) = t.bounds();
+        let size = hi - lo;
+        // About one cell per triangle, shaped like the bounding box.
+        let cells = t.triangle_count().max(1) as f64;
+        let aspect = (size.x / size.y.max(f64::MIN_POSITIVE)).clamp(1e-3, 1e3);
+        let nx = ((cells * aspect).sqrt().ceil() as usize).clamp(1, 1 << 14);
+        let ny = ((cells / nx as f64).ceil() as usize).clamp(1, 1 << 14);
+        let cell = [
+            size.x.max(f64::MIN_POSITIVE) / nx as f64,
+            size.y.max(f64::MIN_POSITIVE) / ny as f64,
+        ];
+        let mut start = vec![NO_NEIGHBOR; nx * ny];
+        // Rasterise: a cell gets a triangle that contains its centre.
+        for s in 0..t.triangle_count() {
+            let g = t.triangle_geometry(s);
+            let (mut x0, mut y0, mut x1, mut y1) = (
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            );
+            for v in g.v {
+                x0 = x0.min(v.x);
+                y0 = y0.min(v.y);
+                x1 = x1.max(v.x);
+                y1 = y1.max(v.y);
+            }
+            let ci = |x: f64, k: usize, o: f64| {
+                (((x - o) / cell[k] - 0.5).floor().max(0.0) as usize).min([nx, ny][k] - 1)
+            };
+            let cj = |x: f64, k: usize, o: f64| {
+                (((x - o) / cell[k] - 0.5).ceil().max(0.0) as usize).min([nx, ny][k] - 1)
+            };
+            for j in ci(y0, 1, lo.y)..=cj(y1, 1, lo.y) {
+                for i in ci(x0, 0, lo.x)..=cj(x1, 0, lo.x) {
+                    let c = Point2::new(
+                        lo.x + (i as f64 + 0.5) * cell[0],
+                        lo.y + (j as f64 + 0.5) * cell[1],
+                    );
+                    if t.bary(s, c).iter().all(|&b| b >= -INSIDE_TOLERANCE) {
+                        start[j * nx + i] = s as u32;
+                    }
+                }
+            }
+        }
+        // Cells whose centre is outside the domain take a neighbour's triangle.
+        let mut frontier: Vec<usize> = (0..start.len())
+            .filter(|&k| start[k] != NO_NEIGHBOR)
+            .collect();
+        if frontier.is_empty() {
+            start.fill(0);
+        }
+        while !frontier.is_empty() {
+            let mut next = Vec::new();
+            for k in frontier {
+                let (i, j) = (k % nx, k / nx);
+                let nbrs = [
+                    (i.wrapping_sub(1), j),
+                    (i + 1, j),
+                    (i, j.wrapping_sub(1)),
+                    (i, j + 1),
+                ];
+                for (a, b) in nbrs {
+                    if a < nx && b < ny && start[b * nx + a] == NO_NEIGHBOR {
+                        start[b * nx + a] = start[k];
+                        next.push(b * nx + a);
+                    }
+                }
+            }
+            frontier = next;
+        }
+        Buckets {
+            origin: lo,
+            inv_cell: [1.0 / cell[0], 1.0 / cell[1]],
+            n: [nx, ny],
+            start,
+        }
+    }
+
+    /// A triangle near `p`.
+    #[inline]
+    fn start(&self, p: Point2<f64>) -> usize {
+        let i = (((p.x - self.origin.x) * self.inv_cell[0]).max(0.0) as usize).min(self.n[0] - 1);
+        let j = (((p.y - self.origin.y) * self.inv_cell[1]).max(0.0) as usize).min(self.n[1] - 1);
+        self.start[j * self.n[0] + i] as usize
+    }
 }
 
 impl Triangulation {
     fn locator(&self) -> &Locator {
-        self.locator.get_or_init(|| {
+        self.locator.get_or_init(|| Locator {
+            buckets: Buckets::new(self),
+            tree: std::sync::OnceLock::new(),
+        })
+    }
+
+    fn rtree(&self) -> &RTree<GeomWithData<Rectangle<[f64; 2]>, u32>> {
+        self.locator().tree.get_or_init(|| {
             let (lo, hi) = self.bounds();
             let pad = 1e-12 * (hi - lo).norm();
             let boxes = (0..self.triangle_count())
                 .map(|t| {
                     let g = self.triangle_geometry(t);
-                    let xs = g.v.map(|v| v.x);
-                    let ys = g.v.map(|v| v.y);
-                    let min = [
-                        xs.iter().copied().fold(f64::INFINITY, f64::min) - pad,
-                        ys.iter().copied().fold(f64::INFINITY, f64::min) - pad,
-                    ];
-                    let max = [
-                        xs.iter().copied().fold(f64::NEG_INFINITY, f64::max) + pad,
-                        ys.iter().copied().fold(f64::NEG_INFINITY, f64::max) + pad,
-                    ];
-                    GeomWithData::new(Rectangle::from_corners(min, max), t as u32)
+                    let (mut min, mut max) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+                    for v in g.v {
+                        min = [min[0].min(v.x), min[1].min(v.y)];
+                        max = [max[0].max(v.x), max[1].max(v.y)];
+                    }
+                    let rect = Rectangle::from_corners(
+                        [min[0] - pad, min[1] - pad],
+                        [max[0] + pad, max[1] + pad],
+                    );
+                    GeomWithData::new(rect, t as u32)
                 })
                 .collect();
-            Locator {
-                tree: RTree::bulk_load(boxes),
-            }
+            RTree::bulk_load(boxes)
         })
     }
 
@@ -71,17 +177,27 @@ impl Triangulation {
         [t0, t1, 1.0 - t0 - t1]
     }
 
-    /// Builds the spatial index now (it is otherwise built on the first random query).
+    /// Builds the spatial indexes now (they are otherwise built on the first random query).
     pub fn prepare_locator(&self) {
         self.locator();
     }
 
-    /// The triangle containing `p`, or `None` when `p` lies outside the domain.
-    /// Uses the R-tree: O(log t) for any query.
+    /// A triangle near `p`, to start a walk from (the bucket grid's guess).
+    pub fn start_triangle(&self, p: Point2<f64>) -> usize {
+        self.locator().buckets.start(p)
+    }
+
+    /// The triangle containing `p`, or `None` when `p` lies outside the domain: a walk from
+    /// the bucket grid's guess, with the R-tree as the exact fallback.
     pub fn locate(&self, p: Point2<f64>) -> Option<Location> {
+        self.locate_from(p, self.start_triangle(p))
+    }
+
+    /// The triangle containing `p` by the R-tree alone (exact; slower than walking).
+    pub fn locate_exhaustive(&self, p: Point2<f64>) -> Option<Location> {
         let mut best: Option<Location> = None;
         let mut best_min = f64::NEG_INFINITY;
-        for cand in self.locator().tree.locate_all_at_point([p.x, p.y]) {
+        for cand in self.rtree().locate_all_at_point([p.x, p.y]) {
             let t = cand.data as usize;
             let b = self.bary(t, p);
             let m = b[0].min(b[1]).min(b[2]);
@@ -101,8 +217,8 @@ impl Triangulation {
 
     /// The triangle containing `p`, walking from triangle `hint` across the edge with the
     /// most negative barycentric coordinate; cheap when `p` is near `hint` (as for
-    /// consecutive points of a grid). Falls back to [`Triangulation::locate`] when the walk
-    /// reaches the boundary or takes too long.
+    /// consecutive points of a grid). Falls back to the R-tree when the walk reaches the
+    /// boundary (the point may lie across a notch of a non-convex domain) or takes too long.
     pub fn locate_from(&self, p: Point2<f64>, hint: usize) -> Option<Location> {
         let mut t = hint;
         for _ in 0..MAX_WALK {
@@ -126,6 +242,6 @@ impl Triangulation {
             }
             t = n as usize;
         }
-        self.locate(p)
+        self.locate_exhaustive(p)
     }
 }

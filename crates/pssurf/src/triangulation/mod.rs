@@ -31,6 +31,7 @@ pub struct Triangulation {
     molecule_list: Vec<u32>,
     on_boundary: Vec<bool>,
     locator: OnceLock<locate::Locator>,
+    spatial: OnceLock<Vec<u32>>,
 }
 
 impl Clone for Triangulation {
@@ -43,6 +44,7 @@ impl Clone for Triangulation {
             molecule_list: self.molecule_list.clone(),
             on_boundary: self.on_boundary.clone(),
             locator: OnceLock::new(),
+            spatial: OnceLock::new(),
         }
     }
 }
@@ -198,11 +200,54 @@ impl Triangulation {
             .sum()
     }
 
+    /// The vertices in the order of a space-filling (Morton) curve: per-vertex work done in
+    /// this order touches neighbouring triangles one after another, which keeps caches warm
+    /// when the vertex numbering itself is random (as for scattered data).
+    pub fn spatial_order(&self) -> &[u32] {
+        self.spatial.get_or_init(|| morton_order(&self.vertices))
+    }
+
     /// The local position (0, 1 or 2) of vertex `v` in triangle `t`, if it is a corner.
     #[inline]
     pub fn corner_of(&self, t: usize, v: usize) -> Option<usize> {
         self.triangles[t].iter().position(|&x| x as usize == v)
     }
+}
+
+/// Indices of `points` sorted by their Morton (Z-order) code on a 2^16 × 2^16 grid over
+/// their bounding box.
+pub fn morton_order(points: &[Point2<f64>]) -> Vec<u32> {
+    let (mut lo, mut hi) = (
+        Point2::new(f64::INFINITY, f64::INFINITY),
+        Point2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+    );
+    for p in points {
+        lo = Point2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point2::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let scale = [
+        65535.0 / (hi.x - lo.x).max(f64::MIN_POSITIVE),
+        65535.0 / (hi.y - lo.y).max(f64::MIN_POSITIVE),
+    ];
+    let spread = |v: u32| {
+        let mut x = v as u64 & 0xffff;
+        x = (x | (x << 8)) & 0x00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333;
+        x = (x | (x << 1)) & 0x5555_5555;
+        x
+    };
+    let mut keyed: Vec<(u64, u32)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let x = ((p.x - lo.x) * scale[0]) as u32;
+            let y = ((p.y - lo.y) * scale[1]) as u32;
+            (spread(x) | (spread(y) << 1), i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
 }
 
 #[cfg(test)]

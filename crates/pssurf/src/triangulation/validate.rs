@@ -44,6 +44,7 @@ pub(super) fn build(
         molecule_list: list,
         on_boundary: vec![false; n],
         locator: OnceLock::new(),
+        spatial: OnceLock::new(),
     };
     mark_boundary(&mut t);
     check_vertex_angles(&t)?;
@@ -230,10 +231,15 @@ fn mark_boundary(t: &mut Triangulation) {
     }
 }
 
-/// The number of boundary edges at vertex `v` and the total angle of its triangles there.
+/// The number of boundary edges at vertex `v` and how often its triangles wind around it:
+/// for a closed fan of counter-clockwise triangles the angles add up to 2π times the number
+/// of triangles covering the ray from V in the +x direction (counted with a half-open rule,
+/// no trigonometry); for an open fan the angle sum itself (by atan2).
 fn fan(t: &Triangulation, v: usize) -> (usize, f64) {
     let mut boundary_edges = 0;
+    let mut crossings = 0;
     let mut angle = 0.0;
+    let pv = t.vertex(v);
     for &s in t.molecule(v) {
         let s = s as usize;
         let c = t.corner_of(s, v).expect("molecule triangle has the vertex");
@@ -243,8 +249,26 @@ fn fan(t: &Triangulation, v: usize) -> (usize, f64) {
                 boundary_edges += 1;
             }
         }
-        let [a, b] = [t.triangle(s)[(c + 1) % 3], t.triangle(s)[(c + 2) % 3]];
-        let (u, w) = (t.vertex(a) - t.vertex(v), t.vertex(b) - t.vertex(v));
+        let tri = t.triangle(s);
+        let (u, w) = (
+            t.vertex(tri[(c + 1) % 3]) - pv,
+            t.vertex(tri[(c + 2) % 3]) - pv,
+        );
+        if u.y < 0.0 && w.y >= 0.0 {
+            crossings += 1;
+        }
+    }
+    if boundary_edges == 0 {
+        return (0, TAU * crossings as f64);
+    }
+    for &s in t.molecule(v) {
+        let s = s as usize;
+        let c = t.corner_of(s, v).expect("molecule triangle has the vertex");
+        let tri = t.triangle(s);
+        let (u, w) = (
+            t.vertex(tri[(c + 1) % 3]) - pv,
+            t.vertex(tri[(c + 2) % 3]) - pv,
+        );
         angle += crate::geometry::cross(u, w).atan2(u.dot(&w));
     }
     (boundary_edges, angle)

@@ -1,0 +1,72 @@
+//! Evaluation throughput of a PS-spline: value and gradient (and full jets) on a grid, with
+//! the walking evaluator on one core and in parallel, and at random points (R-tree).
+
+mod common;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+
+fn eval(c: &mut Criterion) {
+    let spline = common::franke_spline(10_000);
+    let pts = common::grid(1000, 1000);
+    let mut g = c.benchmark_group("eval_10k_vertices_1M_grid");
+    g.throughput(Throughput::Elements(pts.len() as u64));
+    g.sample_size(20);
+    g.bench_function("value+gradient/1 core", |b| {
+        b.iter(|| {
+            let mut ev = spline.evaluator();
+            let mut acc = 0.0;
+            for &p in &pts {
+                let (v, gx, gy) = ev.gradient(p).unwrap();
+                acc += v + gx + gy;
+            }
+            black_box(acc)
+        })
+    });
+    g.bench_function("value+gradient/all cores", |b| {
+        b.iter(|| black_box(spline.gradients(&pts)))
+    });
+    g.bench_function("jet (to second order)/1 core", |b| {
+        b.iter(|| {
+            let mut ev = spline.evaluator();
+            let mut acc = 0.0;
+            for &p in &pts {
+                acc += ev.jet(p).unwrap().jet.dxx;
+            }
+            black_box(acc)
+        })
+    });
+    g.bench_function("value/1 core", |b| {
+        b.iter(|| {
+            let mut ev = spline.evaluator();
+            let mut acc = 0.0;
+            for &p in &pts {
+                acc += ev.value(p).unwrap();
+            }
+            black_box(acc)
+        })
+    });
+    g.finish();
+
+    let mut g = c.benchmark_group("eval_random_points");
+    g.sample_size(20);
+    for n in [10_000usize, 100_000, 1_000_000] {
+        let s = common::franke_spline(n);
+        s.basis().triangulation().prepare_locator();
+        let q = common::random_points(200_000, 99);
+        g.throughput(Throughput::Elements(q.len() as u64));
+        g.bench_with_input(BenchmarkId::new("value+gradient/1 core", n), &q, |b, q| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for &p in q {
+                    acc += s.jet(p).unwrap().jet.dx;
+                }
+                black_box(acc)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, eval);
+criterion_main!(benches);
