@@ -8,7 +8,6 @@ mod table;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use nalgebra::Point2;
 
 /// Powell–Sabin spline surfaces: fit scattered data, evaluate, inspect.
 ///
@@ -37,20 +36,6 @@ enum Command {
     Eval(commands::eval::EvalArgs),
     /// Show what a surface file holds: kind, counts, domain, PS-triangle quality, validity.
     Info(commands::info::InfoArgs),
-}
-
-/// A human description of the k-th evaluation point: its CSV row, or its grid position.
-pub(crate) fn describe_point(args: &points::PointArgs, k: usize, p: Point2<f64>) -> String {
-    match args.grid {
-        Some(g) if args.at.is_none() => format!(
-            "grid point ({}, {}) = ({}, {})",
-            k % g.nx,
-            k / g.nx,
-            p.x,
-            p.y
-        ),
-        _ => format!("row {} ({}, {})", k + 1, p.x, p.y),
-    }
 }
 
 fn main() -> ExitCode {

@@ -1,4 +1,4 @@
-//! Writing numeric tables as CSV or NumPy `.npy`, atomically.
+//! Writing numeric tables as CSV or NumPy `.npy`, atomically and in chunks.
 
 use std::io::Write;
 use std::path::Path;
@@ -6,101 +6,112 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use npyz::WriterBuilder;
 
-/// A table of numbers with column names, row-major.
-pub struct NumTable {
-    /// Column names.
-    pub columns: Vec<String>,
-    /// Row-major values, `columns.len()` per row.
-    pub data: Vec<f64>,
+/// The output formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Comma-separated values with a header line.
+    Csv,
+    /// A NumPy float64 2-D array.
+    Npy,
 }
 
-impl NumTable {
-    /// The number of rows.
-    pub fn rows(&self) -> usize {
-        self.data.len() / self.columns.len().max(1)
+impl Format {
+    /// The format for a path: `.npy` means NumPy, anything else CSV.
+    pub fn of(path: Option<&Path>) -> Format {
+        match path {
+            Some(p) if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")) => Format::Npy,
+            _ => Format::Csv,
+        }
     }
 }
 
-/// Writes the table to `path` (by its extension: `.npy` → a float64 2-D array, otherwise
-/// CSV with a header), or as CSV to standard output when `path` is `None`. Files are written
-/// atomically: on failure no partial file is left and an existing file is kept.
-pub fn write_table(table: &NumTable, path: Option<&Path>) -> Result<()> {
+/// Receives the rows of a table, a chunk at a time.
+pub struct TableSink<'w> {
+    w: &'w mut dyn Write,
+    format: Format,
+    width: usize,
+    text: String,
+    bytes: Vec<u8>,
+}
+
+impl TableSink<'_> {
+    /// Appends rows (row-major, `width` numbers each).
+    pub fn rows(&mut self, data: &[f64]) -> Result<()> {
+        match self.format {
+            Format::Csv => {
+                use std::fmt::Write as _;
+                for row in data.chunks(self.width) {
+                    self.text.clear();
+                    for (j, v) in row.iter().enumerate() {
+                        if j > 0 {
+                            self.text.push(',');
+                        }
+                        // Shortest round-trip representation; NaN as `nan`.
+                        if v.is_nan() {
+                            self.text.push_str("nan");
+                        } else {
+                            let _ = write!(self.text, "{v:?}");
+                        }
+                    }
+                    self.text.push('\n');
+                    self.w.write_all(self.text.as_bytes())?;
+                }
+            }
+            Format::Npy => {
+                self.bytes.clear();
+                self.bytes.reserve(8 * data.len());
+                for v in data {
+                    self.bytes.extend_from_slice(&v.to_le_bytes());
+                }
+                self.w.write_all(&self.bytes)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Writes a table of `rows` rows with the given columns to `path` (`.npy` or CSV), or as CSV
+/// to standard output when `path` is `None`; `produce` feeds the rows in chunks. Files are
+/// written atomically: on failure no partial file is left and an existing file is kept.
+pub fn write_streamed(
+    path: Option<&Path>,
+    columns: &[String],
+    rows: usize,
+    produce: impl FnOnce(&mut TableSink<'_>) -> Result<()>,
+) -> Result<()> {
+    let format = Format::of(path);
+    let run = |w: &mut dyn Write| -> Result<()> {
+        match format {
+            Format::Csv => writeln!(w, "{}", columns.join(","))?,
+            Format::Npy => {
+                let shape = [rows as u64, columns.len() as u64];
+                let mut header = Vec::new();
+                npyz::WriteOptions::<f64>::new()
+                    .default_dtype()
+                    .shape(&shape)
+                    .writer(&mut header)
+                    .write_header_only()?;
+                w.write_all(&header)?;
+            }
+        }
+        let mut sink = TableSink {
+            w,
+            format,
+            width: columns.len(),
+            text: String::new(),
+            bytes: Vec::new(),
+        };
+        produce(&mut sink)
+    };
     match path {
         None => {
             let stdout = std::io::stdout();
             let mut lock = std::io::BufWriter::new(stdout.lock());
-            write_csv(table, &mut lock)?;
+            run(&mut lock)?;
             lock.flush()?;
             Ok(())
         }
-        Some(p) => {
-            let npy = p.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy"));
-            pssurf::io::atomic_write(p, |w| {
-                if npy {
-                    write_npy(table, w)
-                } else {
-                    write_csv(table, w)
-                }
-            })
-            .with_context(|| format!("cannot write {}", p.display()))
-        }
-    }
-}
-
-fn write_csv(table: &NumTable, w: &mut dyn Write) -> Result<()> {
-    writeln!(w, "{}", table.columns.join(","))?;
-    let k = table.columns.len();
-    let mut buf = ryu_line::Line::default();
-    for row in table.data.chunks(k) {
-        buf.clear();
-        for (j, v) in row.iter().enumerate() {
-            if j > 0 {
-                buf.push(',');
-            }
-            buf.push_f64(*v);
-        }
-        buf.push('\n');
-        w.write_all(buf.as_bytes())?;
-    }
-    Ok(())
-}
-
-fn write_npy(table: &NumTable, w: &mut dyn Write) -> Result<()> {
-    let shape = [table.rows() as u64, table.columns.len() as u64];
-    let mut writer = npyz::WriteOptions::<f64>::new()
-        .default_dtype()
-        .shape(&shape)
-        .writer(w)
-        .begin_nd()?;
-    writer.extend(table.data.iter().copied())?;
-    writer.finish()?;
-    Ok(())
-}
-
-/// A reusable line buffer with shortest round-trip float formatting.
-mod ryu_line {
-    /// The buffer.
-    #[derive(Default)]
-    pub struct Line(String);
-
-    impl Line {
-        pub fn clear(&mut self) {
-            self.0.clear();
-        }
-        pub fn push(&mut self, c: char) {
-            self.0.push(c);
-        }
-        /// Appends a float so that it parses back to the same value (NaN as `nan`).
-        pub fn push_f64(&mut self, v: f64) {
-            use std::fmt::Write;
-            if v.is_nan() {
-                self.0.push_str("nan");
-            } else {
-                let _ = write!(self.0, "{v:?}");
-            }
-        }
-        pub fn as_bytes(&self) -> &[u8] {
-            self.0.as_bytes()
-        }
+        Some(p) => pssurf::io::atomic_write(p, pssurf::io::Durability::Atomic, run)
+            .with_context(|| format!("cannot write {}", p.display())),
     }
 }

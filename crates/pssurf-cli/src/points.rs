@@ -5,7 +5,9 @@ use std::str::FromStr;
 
 use anyhow::{Result, bail};
 use nalgebra::Point2;
+use pssurf::surface::{ParametricSurface, SurfaceJet, fill_rows};
 
+use crate::output::write_streamed;
 use crate::table::Table;
 
 /// A regular grid of NX × NY points over the domain's bounding box, written `NXxNY`.
@@ -47,52 +49,59 @@ pub enum Outside {
     Skip,
 }
 
-/// Where the points come from.
-pub enum PointSource<'a> {
-    /// A CSV file with columns `u,v` (or `x,y`).
-    File(&'a Path, bool),
-    /// A grid over the bounding box.
-    Grid(GridSize),
+/// The evaluation points of a command: a list read from a file, or a grid generated on the fly.
+pub enum Points {
+    /// Points read from a CSV file (reported by row number).
+    List(Vec<Point2<f64>>),
+    /// A grid over a box (reported by grid position).
+    Grid {
+        /// The grid's size.
+        size: GridSize,
+        /// The box.
+        bounds: (Point2<f64>, Point2<f64>),
+    },
 }
 
-/// Reads or generates the points; `functional` allows `x,y` as column names.
-pub fn points(
-    source: PointSource<'_>,
-    bounds: (Point2<f64>, Point2<f64>),
-) -> Result<Vec<Point2<f64>>> {
-    match source {
-        PointSource::File(path, functional) => {
-            let t = Table::read(path)?;
-            let cols = match (t.column("u"), t.column("v"), t.column("x"), t.column("y")) {
-                (Some(u), Some(v), _, _) => (u, v),
-                (_, _, Some(x), Some(y)) if functional => (x, y),
-                _ => bail!(
-                    "{}: needs columns `u,v`{} (found: {})",
-                    path.display(),
-                    if functional { " or `x,y`" } else { "" },
-                    t.headers.join(",")
-                ),
-            };
-            Ok(t.rows
-                .iter()
-                .map(|r| Point2::new(r[cols.0], r[cols.1]))
-                .collect())
+impl Points {
+    /// How many points.
+    pub fn len(&self) -> usize {
+        match self {
+            Points::List(v) => v.len(),
+            Points::Grid { size, .. } => size.nx * size.ny,
         }
-        PointSource::Grid(g) => Ok(grid(g, bounds)),
     }
-}
 
-/// The grid points, row by row (v outer, u inner), endpoints included.
-pub fn grid(g: GridSize, (lo, hi): (Point2<f64>, Point2<f64>)) -> Vec<Point2<f64>> {
-    let mut out = Vec::with_capacity(g.nx * g.ny);
-    for j in 0..g.ny {
-        let v = lo.y + (hi.y - lo.y) * j as f64 / (g.ny - 1) as f64;
-        for i in 0..g.nx {
-            let u = lo.x + (hi.x - lo.x) * i as f64 / (g.nx - 1) as f64;
-            out.push(Point2::new(u, v));
+    /// The k-th point (grids row by row: v outer, u inner, endpoints included).
+    pub fn get(&self, k: usize) -> Point2<f64> {
+        match self {
+            Points::List(v) => v[k],
+            Points::Grid {
+                size,
+                bounds: (lo, hi),
+            } => {
+                let (i, j) = (k % size.nx, k / size.nx);
+                Point2::new(
+                    lo.x + (hi.x - lo.x) * i as f64 / (size.nx - 1) as f64,
+                    lo.y + (hi.y - lo.y) * j as f64 / (size.ny - 1) as f64,
+                )
+            }
         }
     }
-    out
+
+    /// A human description of the k-th point: its CSV row, or its grid position.
+    pub fn describe(&self, k: usize) -> String {
+        let p = self.get(k);
+        match self {
+            Points::List(_) => format!("row {} ({}, {})", k + 1, p.x, p.y),
+            Points::Grid { size, .. } => format!(
+                "grid point ({}, {}) = ({}, {})",
+                k % size.nx,
+                k / size.nx,
+                p.x,
+                p.y
+            ),
+        }
+    }
 }
 
 /// The `--at` / `--grid` pair shared by commands that evaluate at points.
@@ -110,16 +119,109 @@ pub struct PointArgs {
 }
 
 impl PointArgs {
-    /// The points.
-    pub fn resolve(
-        &self,
-        bounds: (Point2<f64>, Point2<f64>),
-        functional: bool,
-    ) -> Result<Vec<Point2<f64>>> {
+    /// The points; `functional` allows `x,y` as column names.
+    pub fn resolve(&self, bounds: (Point2<f64>, Point2<f64>), functional: bool) -> Result<Points> {
         match (&self.at, self.grid) {
-            (Some(p), _) => points(PointSource::File(p, functional), bounds),
-            (None, Some(g)) => points(PointSource::Grid(g), bounds),
+            (Some(p), _) => read_points(p, functional).map(Points::List),
+            (None, Some(size)) => Ok(Points::Grid { size, bounds }),
             (None, None) => bail!("give --at PTS.csv or --grid NXxNY"),
         }
     }
+}
+
+/// Reads points from a CSV file with columns `u,v` (or `x,y` when `functional`).
+fn read_points(path: &Path, functional: bool) -> Result<Vec<Point2<f64>>> {
+    let t = Table::read(path)?;
+    let cols = match (t.column("u"), t.column("v"), t.column("x"), t.column("y")) {
+        (Some(u), Some(v), _, _) => (u, v),
+        (_, _, Some(x), Some(y)) if functional => (x, y),
+        _ => bail!(
+            "{}: needs columns `u,v`{} (found: {})",
+            path.display(),
+            if functional { " or `x,y`" } else { "" },
+            t.headers.join(",")
+        ),
+    };
+    Ok(t.rows
+        .iter()
+        .map(|r| Point2::new(r[cols.0], r[cols.1]))
+        .collect())
+}
+
+/// Evaluates a surface at the points and writes a table whose columns are `u, v` followed by
+/// what `fill` writes from each point's jet (`columns.len() − 2` numbers). Points outside the
+/// domain are handled by `outside`. The table is produced in chunks (evaluated in parallel)
+/// and streamed to the output, so memory stays small for any number of points; on error no
+/// output file is left.
+pub fn evaluate_table<S: ParametricSurface>(
+    surface: &S,
+    points: &Points,
+    columns: &[String],
+    outside: Outside,
+    output: Option<&Path>,
+    fill: impl Fn(&SurfaceJet, &mut [f64]) + Sync,
+) -> Result<()> {
+    const CHUNK: usize = 1 << 16;
+    let width = columns.len();
+    // One extra column per row flags points outside the domain.
+    let wide = width + 1;
+    let n = points.len();
+    let mut pts = Vec::with_capacity(CHUNK.min(n));
+    let mut buf = vec![0.0; CHUNK.min(n) * wide];
+    let mut rows = Vec::with_capacity(CHUNK.min(n) * width);
+    let chunk = |start: usize, pts: &mut Vec<Point2<f64>>, buf: &mut Vec<f64>| {
+        let len = CHUNK.min(n - start);
+        pts.clear();
+        pts.extend((start..start + len).map(|k| points.get(k)));
+        buf.resize(len * wide, 0.0);
+        fill_rows(surface, pts, wide, buf, |p, r, row| {
+            row[0] = p.x;
+            row[1] = p.y;
+            match r {
+                Ok(j) => {
+                    fill(j, &mut row[2..width]);
+                    row[width] = 0.0;
+                }
+                Err(_) => {
+                    row[2..width].fill(f64::NAN);
+                    row[width] = 1.0;
+                }
+            }
+        });
+    };
+    // The number of rows must be known before writing a .npy header: when skipping points,
+    // evaluate everything first (kept in memory); otherwise stream.
+    let skipping = outside == Outside::Skip;
+    let mut kept: Vec<f64> = Vec::new();
+    if skipping {
+        for start in (0..n).step_by(CHUNK) {
+            chunk(start, &mut pts, &mut buf);
+            for row in buf.chunks(wide).filter(|r| r[width] == 0.0) {
+                kept.extend_from_slice(&row[..width]);
+            }
+        }
+    }
+    let total = if skipping { kept.len() / width } else { n };
+    write_streamed(output, columns, total, |sink| {
+        if skipping {
+            return sink.rows(&kept);
+        }
+        for start in (0..n).step_by(CHUNK) {
+            chunk(start, &mut pts, &mut buf);
+            if outside == Outside::Error
+                && let Some(k) = buf.chunks(wide).position(|r| r[width] != 0.0)
+            {
+                bail!(
+                    "{} lies outside the domain (use --outside nan|skip to continue)",
+                    points.describe(start + k)
+                );
+            }
+            rows.clear();
+            for row in buf.chunks(wide) {
+                rows.extend_from_slice(&row[..width]);
+            }
+            sink.rows(&rows)?;
+        }
+        Ok(())
+    })
 }

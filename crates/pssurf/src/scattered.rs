@@ -1,7 +1,7 @@
 //! Scattered data on triangulations: estimating the gradients that Hermite interpolation
 //! (2.30) needs when only values are known.
 
-use nalgebra::{DMatrix, DVector, Vector2};
+use nalgebra::Vector2;
 use rayon::prelude::*;
 use thiserror::Error;
 
@@ -42,7 +42,7 @@ pub fn estimate_gradients(
     (0..tri.vertex_count())
         .into_par_iter()
         .with_min_len(512)
-        .map(|i| gradient_at(tri, values, i))
+        .map_init(Vec::new, |work, i| gradient_at(tri, values, i, work))
         .collect()
 }
 
@@ -50,6 +50,7 @@ fn gradient_at(
     tri: &Triangulation,
     values: &[f64],
     i: usize,
+    work: &mut Vec<f64>,
 ) -> Result<(Vector2<f64>, GradientFit), GradientError> {
     let mut ring = vec![i];
     let mut seen = vec![i];
@@ -57,12 +58,12 @@ fn gradient_at(
         ring = next_ring(tri, &ring, &mut seen);
         let nbrs = &seen[1..];
         if nbrs.len() >= 5
-            && let Some(g) = fit(tri, values, i, nbrs, true)
+            && let Some(g) = fit(tri, values, i, nbrs, true, work)
         {
             return Ok((g, GradientFit::Quadratic { rings }));
         }
     }
-    fit(tri, values, i, &seen[1..], false)
+    fit(tri, values, i, &seen[1..], false, work)
         .map(|g| (g, GradientFit::Linear))
         .ok_or(GradientError { vertex: i })
 }
@@ -84,41 +85,79 @@ fn next_ring(tri: &Triangulation, ring: &[usize], seen: &mut Vec<usize>) -> Vec<
 }
 
 /// Weighted least squares for (g, H) (quadratic) or g (linear), in coordinates scaled by the
-/// neighbourhood's size; `None` when the system is (numerically) rank-deficient.
+/// neighbourhood's size; `None` when the system is (numerically) rank-deficient. Solved by
+/// modified Gram–Schmidt on the augmented matrix [A | b] (backward stable for least squares),
+/// in the reusable buffer `work` (column-major).
 fn fit(
     tri: &Triangulation,
     values: &[f64],
     i: usize,
     nbrs: &[usize],
     quadratic: bool,
+    work: &mut Vec<f64>,
 ) -> Option<Vector2<f64>> {
     let p = tri.vertex(i);
     let h = nbrs
         .iter()
         .map(|&k| (tri.vertex(k) - p).norm())
         .fold(0.0, f64::max);
-    let cols = if quadratic { 5 } else { 2 };
-    let mut a = DMatrix::zeros(nbrs.len(), cols);
-    let mut b = DVector::zeros(nbrs.len());
+    let n = if quadratic { 5 } else { 2 };
+    let m = nbrs.len();
+    work.clear();
+    work.resize(m * (n + 1), 0.0);
     for (r, &k) in nbrs.iter().enumerate() {
         let d = (tri.vertex(k) - p) / h;
         let w = 1.0 / d.norm();
-        a[(r, 0)] = w * d.x;
-        a[(r, 1)] = w * d.y;
-        if quadratic {
-            a[(r, 2)] = w * 0.5 * d.x * d.x;
-            a[(r, 3)] = w * d.x * d.y;
-            a[(r, 4)] = w * 0.5 * d.y * d.y;
+        let row = [
+            w * d.x,
+            w * d.y,
+            w * 0.5 * d.x * d.x,
+            w * d.x * d.y,
+            w * 0.5 * d.y * d.y,
+        ];
+        for c in 0..n {
+            work[c * m + r] = row[c];
         }
-        b[r] = w * (values[k] - values[i]);
+        work[n * m + r] = w * (values[k] - values[i]);
     }
-    let svd = a.svd(true, true);
-    let s = &svd.singular_values;
-    let (smax, smin) = (s.max(), s.min());
-    if !(smin > 1e-9 * smax) {
-        return None;
+    let mut rmat = [[0.0f64; 6]; 5];
+    let mut norms = [0.0f64; 5];
+    for c in 0..n {
+        norms[c] = work[c * m..(c + 1) * m]
+            .iter()
+            .map(|x| x * x)
+            .sum::<f64>()
+            .sqrt();
     }
-    let x = svd.solve(&b, 0.0).ok()?;
+    for j in 0..n {
+        let (head, tail) = work.split_at_mut((j + 1) * m);
+        let qj = &mut head[j * m..];
+        let rjj = qj.iter().map(|x| x * x).sum::<f64>().sqrt();
+        // Rank test: the column must keep a fair share of its length after orthogonalising.
+        if !(rjj > 1e-9 * norms[j]) {
+            return None;
+        }
+        for x in qj.iter_mut() {
+            *x /= rjj;
+        }
+        rmat[j][j] = rjj;
+        for (k, col) in tail.chunks_mut(m).enumerate() {
+            let rjk: f64 = qj.iter().zip(col.iter()).map(|(a, b)| a * b).sum();
+            for (x, q) in col.iter_mut().zip(qj.iter()) {
+                *x -= rjk * q;
+            }
+            rmat[j][j + 1 + k] = rjk;
+        }
+    }
+    // Back substitution R x = Qᵀ b (the last column of R).
+    let mut x = [0.0f64; 5];
+    for j in (0..n).rev() {
+        let mut s = rmat[j][n];
+        for k in j + 1..n {
+            s -= rmat[j][k] * x[k];
+        }
+        x[j] = s / rmat[j][j];
+    }
     Some(Vector2::new(x[0], x[1]) / h)
 }
 

@@ -30,11 +30,12 @@ pub struct OutsideDomain {
     pub v: f64,
 }
 
-/// Remembers where the previous evaluation happened, so that nearby points are found by a
-/// short walk. Start with `Cursor::default()` (no history: the first point is located from
-/// scratch) and reuse it along a grid or a curve.
+/// Remembers where the previous evaluation happened (a triangle to start the next walk from),
+/// so that nearby points are found by a short walk. Get one from
+/// [`ParametricSurface::cursor_near`] for the first point and reuse it along a grid or a curve;
+/// `Cursor::default()` works too (it starts at triangle 0).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Cursor(pub Option<usize>);
+pub struct Cursor(pub usize);
 
 /// A parametric surface s: Ω ⊂ R² → R³ with first and second derivatives.
 ///
@@ -46,9 +47,15 @@ pub trait ParametricSurface: Send + Sync {
     /// s and its derivatives at `uv`, starting the search at `cursor` (which is updated).
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain>;
 
+    /// A cursor from which the search for `uv` is short (for piecewise surfaces a spatial
+    /// index is consulted once; then reuse the cursor for nearby points).
+    fn cursor_near(&self, _uv: Point2<f64>) -> Cursor {
+        Cursor::default()
+    }
+
     /// s and its derivatives at `uv`.
     fn jet(&self, uv: Point2<f64>) -> Result<SurfaceJet, OutsideDomain> {
-        self.jet_with(uv, &mut Cursor::default())
+        self.jet_with(uv, &mut self.cursor_near(uv))
     }
 
     /// The point s(u, v).
@@ -69,6 +76,9 @@ impl<S: ParametricSurface + ?Sized> ParametricSurface for &S {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
         (**self).domain_bounds()
     }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        (**self).cursor_near(uv)
+    }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
         (**self).jet_with(uv, cursor)
     }
@@ -78,6 +88,9 @@ impl<S: ParametricSurface + ?Sized> ParametricSurface for Box<S> {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
         (**self).domain_bounds()
     }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        (**self).cursor_near(uv)
+    }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
         (**self).jet_with(uv, cursor)
     }
@@ -86,6 +99,9 @@ impl<S: ParametricSurface + ?Sized> ParametricSurface for Box<S> {
 impl<S: ParametricSurface + ?Sized> ParametricSurface for Arc<S> {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
         (**self).domain_bounds()
+    }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        (**self).cursor_near(uv)
     }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
         (**self).jet_with(uv, cursor)
@@ -108,12 +124,39 @@ pub fn jets<S: ParametricSurface + ?Sized>(
         .par_chunks(8192)
         .zip(out.par_chunks_mut(8192))
         .for_each(|(pts, res)| {
-            let mut cursor = Cursor::default();
+            let mut cursor = surface.cursor_near(pts[0]);
             for (r, &p) in res.iter_mut().zip(pts) {
                 *r = surface.jet_with(p, &mut cursor);
             }
         });
     out
+}
+
+/// Evaluates `f(jet, row)` at every point in parallel, writing `width` numbers per point into
+/// `out` (`out.len() == points.len() * width`); points outside the domain get `f(Err, row)`.
+/// Nothing is materialised per point, so this is the way to fill large output tables.
+pub fn fill_rows<S: ParametricSurface + ?Sized>(
+    surface: &S,
+    points: &[Point2<f64>],
+    width: usize,
+    out: &mut [f64],
+    f: impl Fn(Point2<f64>, Result<&SurfaceJet, OutsideDomain>, &mut [f64]) + Sync,
+) {
+    use rayon::prelude::*;
+    assert_eq!(out.len(), points.len() * width, "one row per point");
+    const CHUNK: usize = 8192;
+    points
+        .par_chunks(CHUNK)
+        .zip(out.par_chunks_mut(CHUNK * width))
+        .for_each(|(pts, rows)| {
+            let mut cursor = surface.cursor_near(pts[0]);
+            for (&p, row) in pts.iter().zip(rows.chunks_mut(width)) {
+                match surface.jet_with(p, &mut cursor) {
+                    Ok(j) => f(p, Ok(&j), row),
+                    Err(e) => f(p, Err(e), row),
+                }
+            }
+        });
 }
 
 /// The graph (x, y, f(x, y)) of a scalar jet.
@@ -133,20 +176,20 @@ fn ps_locate<V: crate::vector::Vector>(
     uv: Point2<f64>,
     cursor: &mut Cursor,
 ) -> Result<PsJet<V>, OutsideDomain> {
-    let basis = s.basis();
-    let hint = cursor
-        .0
-        .unwrap_or_else(|| basis.triangulation().start_triangle(uv));
-    let loc = basis
-        .locate(uv, hint)
+    let loc = s
+        .basis()
+        .locate(uv, cursor.0)
         .ok_or(OutsideDomain { u: uv.x, v: uv.y })?;
-    cursor.0 = Some(loc.triangle);
+    cursor.0 = loc.triangle;
     Ok(s.jet_at(&loc))
 }
 
 impl ParametricSurface for PsSpline<Vector3<f64>> {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
         self.basis().triangulation().bounds()
+    }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        Cursor(self.basis().triangulation().start_triangle(uv))
     }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
         let j = ps_locate(self, uv, cursor)?;
@@ -161,6 +204,9 @@ impl ParametricSurface for PsSpline<f64> {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
         self.basis().triangulation().bounds()
     }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        Cursor(self.basis().triangulation().start_triangle(uv))
+    }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
         let j = ps_locate(self, uv, cursor)?;
         Ok(SurfaceJet {
@@ -174,14 +220,13 @@ impl ParametricSurface for Nurps<Vector3<f64>> {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
         self.basis().triangulation().bounds()
     }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        Cursor(self.basis().triangulation().start_triangle(uv))
+    }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
-        let mut hint = cursor
-            .0
-            .unwrap_or_else(|| self.basis().triangulation().start_triangle(uv));
         let j = self
-            .jet_from(uv, &mut hint)
+            .jet_from(uv, &mut cursor.0)
             .map_err(|_| OutsideDomain { u: uv.x, v: uv.y })?;
-        cursor.0 = Some(hint);
         Ok(SurfaceJet {
             jet: j.jet,
             patch: Some(j.patch),
@@ -285,6 +330,9 @@ impl PsSurface {
 impl ParametricSurface for PsSurface {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
         self.basis().triangulation().bounds()
+    }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        Cursor(self.basis().triangulation().start_triangle(uv))
     }
     fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
         match self {

@@ -2,11 +2,10 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
-use pssurf::surface::{ParametricSurface, jets};
+use anyhow::Result;
+use pssurf::surface::ParametricSurface;
 
-use crate::output::{NumTable, write_table};
-use crate::points::{Outside, PointArgs};
+use crate::points::{Outside, PointArgs, evaluate_table};
 
 /// Arguments of `pssurf eval`.
 #[derive(clap::Args, Debug)]
@@ -34,33 +33,24 @@ pub fn run(args: &EvalArgs) -> Result<()> {
     let surface = pssurf::io::load(&args.surface)?;
     let functional = matches!(surface, pssurf::surface::PsSurface::Functional(_));
     let pts = args.points.resolve(surface.domain_bounds(), functional)?;
-    let results = jets(&surface, &pts);
     let mut columns: Vec<String> = ["u", "v", "x", "y", "z"].map(String::from).to_vec();
     if args.derivatives {
         columns.extend(["xu", "yu", "zu", "xv", "yv", "zv"].map(String::from));
     }
-    let mut data = Vec::with_capacity(pts.len() * columns.len());
-    for (k, (p, r)) in pts.iter().zip(&results).enumerate() {
-        match r {
-            Ok(j) => {
-                let j = &j.jet;
-                data.extend([p.x, p.y, j.value.x, j.value.y, j.value.z]);
-                if args.derivatives {
-                    data.extend([j.dx.x, j.dx.y, j.dx.z, j.dy.x, j.dy.y, j.dy.z]);
-                }
+    let derivatives = args.derivatives;
+    evaluate_table(
+        &surface,
+        &pts,
+        &columns,
+        args.outside,
+        args.output.as_deref(),
+        |j, row| {
+            let j = &j.jet;
+            row[0..3].copy_from_slice(j.value.as_slice());
+            if derivatives {
+                row[3..6].copy_from_slice(j.dx.as_slice());
+                row[6..9].copy_from_slice(j.dy.as_slice());
             }
-            Err(_) => match args.outside {
-                Outside::Error => bail!(
-                    "{} lies outside the domain (use --outside nan|skip to continue)",
-                    crate::describe_point(&args.points, k, *p)
-                ),
-                Outside::Skip => {}
-                Outside::Nan => {
-                    data.extend([p.x, p.y]);
-                    data.extend(std::iter::repeat_n(f64::NAN, columns.len() - 2));
-                }
-            },
-        }
-    }
-    write_table(&NumTable { columns, data }, args.output.as_deref())
+        },
+    )
 }

@@ -3,11 +3,23 @@
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
+/// How much a write must survive.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Durability {
+    /// Replace atomically (temporary file + rename): a failed write never leaves a partial
+    /// file or destroys the previous one. For regenerable outputs (tables, meshes, images).
+    Atomic,
+    /// Atomic, and the data is flushed to the disk (fsync) before the rename, so that it
+    /// also survives a power failure. For surface files, the user's source of truth.
+    Durable,
+}
+
 /// Writes `path` through `fill` into a temporary file in the same directory, then renames it
 /// over `path`. If `fill` or any write fails, `path` is left untouched and the temporary file
 /// is removed.
 pub fn atomic_write<E: From<std::io::Error>>(
     path: &Path,
+    durability: Durability,
     fill: impl FnOnce(&mut dyn Write) -> Result<(), E>,
 ) -> Result<(), E> {
     let dir = match path.parent() {
@@ -19,16 +31,22 @@ pub fn atomic_write<E: From<std::io::Error>>(
         .suffix(".tmp")
         .tempfile_in(dir)?;
     {
-        let mut w = BufWriter::new(tmp.as_file());
+        let mut w = BufWriter::with_capacity(1 << 20, tmp.as_file());
         fill(&mut w)?;
         w.flush()?;
     }
-    tmp.as_file().sync_all()?;
+    if durability == Durability::Durable {
+        tmp.as_file().sync_all()?;
+    }
     tmp.persist(path).map_err(|e| E::from(e.error))?;
     Ok(())
 }
 
 /// Writes `bytes` to `path` atomically (see [`atomic_write`]).
-pub fn atomic_write_bytes(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    atomic_write(path, |w| w.write_all(bytes))
+pub fn atomic_write_bytes(
+    path: &Path,
+    durability: Durability,
+    bytes: &[u8],
+) -> std::io::Result<()> {
+    atomic_write(path, durability, |w| w.write_all(bytes))
 }

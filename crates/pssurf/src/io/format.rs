@@ -379,8 +379,10 @@ pub fn load(path: &Path) -> Result<PsSurface, FileError> {
 /// Writes a surface file atomically (a failure leaves any previous file intact).
 pub fn save(surface: &PsSurface, path: &Path) -> Result<(), FileError> {
     let text = to_json_string(surface);
-    super::atomic_write_bytes(path, text.as_bytes()).map_err(|source| FileError::Io {
-        path: path.to_path_buf(),
-        source,
+    super::atomic_write_bytes(path, super::Durability::Durable, text.as_bytes()).map_err(|source| {
+        FileError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
     })
 }

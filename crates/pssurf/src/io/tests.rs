@@ -171,10 +171,11 @@ fn failed_writes_keep_the_previous_file() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("keep.txt");
     std::fs::write(&path, "old").unwrap();
-    let r: Result<(), std::io::Error> = atomic_write(&path, |w: &mut dyn std::io::Write| {
-        w.write_all(b"partial")?;
-        Err(std::io::Error::other("disk full"))
-    });
+    let r: Result<(), std::io::Error> =
+        atomic_write(&path, Durability::Durable, |w: &mut dyn std::io::Write| {
+            w.write_all(b"partial")?;
+            Err(std::io::Error::other("disk full"))
+        });
     assert!(r.is_err());
     assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
     // No temporary file is left behind.
