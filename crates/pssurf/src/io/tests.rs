@@ -188,3 +188,67 @@ fn failed_writes_keep_the_previous_file() {
     assert!(matches!(e, FileError::Io { .. }));
     let _ = Point2::new(0.0, 0.0);
 }
+
+mod fuzz {
+    //! Mutated files and random inputs are refused with an error, never a panic.
+
+    use super::*;
+    use proptest::prelude::*;
+
+    fn base_text() -> String {
+        let mut r = rng(62);
+        let t = structured(&mut r, 2);
+        let b = Arc::new(PsBasis::optimal(t).unwrap());
+        let n = b.triangulation().vertex_count();
+        let s = PsSurface::Functional(PsSpline::new(b, vec![[0.5, 0.25, -1.0]; n]).unwrap());
+        to_json_string(&s)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        #[test]
+        fn mutated_files_never_panic(
+            edits in proptest::collection::vec((0usize..10_000, 0usize..4, "[-0-9.e,\\[\\]{}\":a-z ]{0,6}"), 1..6)
+        ) {
+            let mut text = base_text();
+            for (pos, kind, s) in edits {
+                let pos = pos % (text.len() + 1);
+                let pos = (0..=pos).rev().find(|&p| text.is_char_boundary(p)).unwrap_or(0);
+                match kind {
+                    0 => text.insert_str(pos, &s),
+                    1 => {
+                        let end = (pos + s.len().max(1)).min(text.len());
+                        let end = (end..=text.len()).find(|&p| text.is_char_boundary(p)).unwrap_or(text.len());
+                        text.replace_range(pos..end, "");
+                    }
+                    2 => text.truncate(pos),
+                    _ => {
+                        let end = (pos + s.len()).min(text.len());
+                        let end = (end..=text.len()).find(|&p| text.is_char_boundary(p)).unwrap_or(text.len());
+                        text.replace_range(pos..end, &s);
+                    }
+                }
+            }
+            // Either a valid surface or an error; reaching here means no panic.
+            let _ = from_json_str(&text);
+        }
+
+        #[test]
+        fn random_triangulations_never_panic(
+            coords in proptest::collection::vec((-3i32..3, -3i32..3), 3..12),
+            tris in proptest::collection::vec((0usize..14, 0usize..14, 0usize..14), 1..12),
+        ) {
+            let v: Vec<Point2<f64>> = coords.iter().map(|&(x, y)| Point2::new(x as f64, y as f64)).collect();
+            let t: Vec<[usize; 3]> = tris.iter().map(|&(a, b, c)| [a, b, c]).collect();
+            if let Ok(tri) = crate::triangulation::Triangulation::try_new(v, t) {
+                // Whatever validates must support the whole PS construction.
+                let basis = PsBasis::optimal(tri).expect("a valid triangulation has a PS basis");
+                let n = basis.triangulation().vertex_count();
+                let s = PsSpline::new(Arc::new(basis), vec![[1.0; 3]; n]).unwrap();
+                let p = s.basis().triangulation().triangle_geometry(0).centroid();
+                prop_assert!((s.eval(p).unwrap() - 1.0).abs() < 1e-12);
+            }
+        }
+    }
+}
