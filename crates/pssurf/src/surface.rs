@@ -72,41 +72,24 @@ pub trait ParametricSurface: Send + Sync {
     }
 }
 
-impl<S: ParametricSurface + ?Sized> ParametricSurface for &S {
-    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
-        (**self).domain_bounds()
-    }
-    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
-        (**self).cursor_near(uv)
-    }
-    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
-        (**self).jet_with(uv, cursor)
-    }
+/// Forwards the trait through references and smart pointers.
+macro_rules! forward_surface {
+    ($($wrapper:ty),*) => {$(
+        impl<S: ParametricSurface + ?Sized> ParametricSurface for $wrapper {
+            fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+                (**self).domain_bounds()
+            }
+            fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+                (**self).cursor_near(uv)
+            }
+            fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+                (**self).jet_with(uv, cursor)
+            }
+        }
+    )*};
 }
 
-impl<S: ParametricSurface + ?Sized> ParametricSurface for Box<S> {
-    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
-        (**self).domain_bounds()
-    }
-    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
-        (**self).cursor_near(uv)
-    }
-    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
-        (**self).jet_with(uv, cursor)
-    }
-}
-
-impl<S: ParametricSurface + ?Sized> ParametricSurface for Arc<S> {
-    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
-        (**self).domain_bounds()
-    }
-    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
-        (**self).cursor_near(uv)
-    }
-    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
-        (**self).jet_with(uv, cursor)
-    }
-}
+forward_surface!(&S, Box<S>, Arc<S>);
 
 /// Jets at many parameter points, in parallel on all cores. Points are processed in
 /// consecutive chunks with one cursor each, so grids and curves cost short walks.

@@ -43,6 +43,21 @@ pub fn random_dir(rng: &mut ChaCha8Rng) -> Vector2<f64> {
     Vector2::new(a.cos(), a.sin())
 }
 
+/// `n` triples of random points of [−1, 1]³ (control points of random surfaces).
+pub fn random_vec3_triples(r: &mut ChaCha8Rng, n: usize) -> Vec<[nalgebra::Vector3<f64>; 3]> {
+    (0..n)
+        .map(|_| {
+            std::array::from_fn(|_| {
+                nalgebra::Vector3::new(
+                    uniform(r, -1.0, 1.0),
+                    uniform(r, -1.0, 1.0),
+                    uniform(r, -1.0, 1.0),
+                )
+            })
+        })
+        .collect()
+}
+
 /// |a − b| ≤ tol · max(1, |a|, |b|): a relative comparison that is absolute near zero.
 pub fn near(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol * a.abs().max(b.abs()).max(1.0)

@@ -69,7 +69,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
         // Without given triangles the vertex order is ours to choose: a space-filling curve
         // keeps neighbouring vertices close in memory, which makes every later step faster.
         // (Duplicates are still reported by their data rows, below.)
-        if let Some((first, second)) = duplicate_rows(&points) {
+        if let Some((first, second)) = pssurf::triangulation::duplicate_points(&points) {
             bail!(
                 "{}: rows {} and {} have the same (x, y); remove one",
                 args.data.display(),
@@ -148,20 +148,4 @@ pub fn run(args: &FitArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
-}
-
-/// The first pair of data rows (zero-based) with the same coordinates.
-fn duplicate_rows(points: &[Point2<f64>]) -> Option<(usize, usize)> {
-    let mut order: Vec<usize> = (0..points.len()).collect();
-    order.sort_unstable_by(|&a, &b| {
-        points[a]
-            .x
-            .total_cmp(&points[b].x)
-            .then(points[a].y.total_cmp(&points[b].y))
-            .then(a.cmp(&b))
-    });
-    order
-        .windows(2)
-        .find(|w| points[w[0]] == points[w[1]])
-        .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
 }

@@ -25,17 +25,7 @@ fn sample_surfaces() -> Vec<PsSurface> {
     let c: Vec<[f64; 3]> = (0..n)
         .map(|_| std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0)))
         .collect();
-    let p: Vec<[Vector3<f64>; 3]> = (0..n)
-        .map(|_| {
-            std::array::from_fn(|_| {
-                Vector3::new(
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                )
-            })
-        })
-        .collect();
+    let p: Vec<[Vector3<f64>; 3]> = random_vec3_triples(&mut r, n);
     let w: Vec<[f64; 3]> = (0..n)
         .map(|_| std::array::from_fn(|_| uniform(&mut r, 0.1, 10.0)))
         .collect();

@@ -68,6 +68,17 @@ fn sample_points(
     out
 }
 
+/// Random Hermite data (values and gradients in [−1, 1]) for n vertices.
+fn random_hermite(r: &mut ChaCha8Rng, n: usize) -> Vec<Hermite<f64>> {
+    (0..n)
+        .map(|_| Hermite {
+            value: uniform(r, -1.0, 1.0),
+            dx: uniform(r, -1.0, 1.0),
+            dy: uniform(r, -1.0, 1.0),
+        })
+        .collect()
+}
+
 fn bases(seed: u64) -> Vec<(&'static str, Arc<PsBasis>)> {
     catalogue(seed)
         .into_iter()
@@ -199,17 +210,7 @@ fn splines_are_c1_across_every_edge_of_the_refinement() {
     for seed in 0..2 {
         for (name, basis) in bases(seed) {
             let t = basis.triangulation();
-            let coeffs: Vec<[Vector3<f64>; 3]> = (0..t.vertex_count())
-                .map(|_| {
-                    std::array::from_fn(|_| {
-                        Vector3::new(
-                            uniform(&mut r, -1.0, 1.0),
-                            uniform(&mut r, -1.0, 1.0),
-                            uniform(&mut r, -1.0, 1.0),
-                        )
-                    })
-                })
-                .collect();
+            let coeffs: Vec<[Vector3<f64>; 3]> = random_vec3_triples(&mut r, t.vertex_count());
             let s = PsSpline::new(basis.clone(), coeffs).unwrap();
             for tr in 0..t.triangle_count() {
                 let p: Vec<_> = (0..6).map(|k| s.patch(tr, k)).collect();
@@ -284,17 +285,7 @@ fn control_triangles_are_tangent_at_their_vertex() {
     let mut r = rng(43);
     for (name, basis) in bases(7) {
         let t = basis.triangulation();
-        let coeffs: Vec<[Vector3<f64>; 3]> = (0..t.vertex_count())
-            .map(|_| {
-                std::array::from_fn(|_| {
-                    Vector3::new(
-                        uniform(&mut r, -1.0, 1.0),
-                        uniform(&mut r, -1.0, 1.0),
-                        uniform(&mut r, -1.0, 1.0),
-                    )
-                })
-            })
-            .collect();
+        let coeffs: Vec<[Vector3<f64>; 3]> = random_vec3_triples(&mut r, t.vertex_count());
         let s = PsSpline::new(basis.clone(), coeffs.clone()).unwrap();
         for i in 0..t.vertex_count() {
             let alpha = basis.alpha(i);
@@ -340,13 +331,7 @@ fn ordinates_next_to_a_vertex_lie_on_its_control_plane() {
     let mut r = rng(44);
     for (name, basis) in bases(8) {
         let t = basis.triangulation();
-        let data: Vec<Hermite<f64>> = (0..t.vertex_count())
-            .map(|_| Hermite {
-                value: uniform(&mut r, -1.0, 1.0),
-                dx: uniform(&mut r, -1.0, 1.0),
-                dy: uniform(&mut r, -1.0, 1.0),
-            })
-            .collect();
+        let data = random_hermite(&mut r, t.vertex_count());
         let s = PsSpline::hermite(basis.clone(), &data).unwrap();
         for tr in 0..t.triangle_count() {
             let v = t.triangle(tr);
@@ -381,13 +366,7 @@ fn hermite_data_is_interpolated_and_2_45_agrees() {
     let mut r = rng(45);
     for (name, basis) in bases(9) {
         let t = basis.triangulation();
-        let data: Vec<Hermite<f64>> = (0..t.vertex_count())
-            .map(|_| Hermite {
-                value: uniform(&mut r, -1.0, 1.0),
-                dx: uniform(&mut r, -1.0, 1.0),
-                dy: uniform(&mut r, -1.0, 1.0),
-            })
-            .collect();
+        let data = random_hermite(&mut r, t.vertex_count());
         let s = PsSpline::hermite(basis.clone(), &data).unwrap();
         for i in 0..t.vertex_count() {
             let j = s.jet(t.vertex(i)).unwrap().jet;
@@ -459,26 +438,12 @@ fn integrals_are_exact() {
     }
 }
 
-fn random_points3(r: &mut ChaCha8Rng, n: usize) -> Vec<[Vector3<f64>; 3]> {
-    (0..n)
-        .map(|_| {
-            std::array::from_fn(|_| {
-                Vector3::new(
-                    uniform(r, -1.0, 1.0),
-                    uniform(r, -1.0, 1.0),
-                    uniform(r, -1.0, 1.0),
-                )
-            })
-        })
-        .collect()
-}
-
 #[test]
 fn nurps_with_equal_weights_is_the_ps_surface_and_matches_the_homogeneous_form() {
     let mut r = rng(47);
     for (name, basis) in bases(11) {
         let t = basis.triangulation();
-        let pts = random_points3(&mut r, t.vertex_count());
+        let pts = random_vec3_triples(&mut r, t.vertex_count());
         let poly = PsSpline::new(basis.clone(), pts.clone()).unwrap();
         let equal =
             Nurps::new(basis.clone(), pts.clone(), vec![[2.5; 3]; t.vertex_count()]).unwrap();
@@ -553,7 +518,7 @@ fn nurps_stays_accurate_with_weights_up_to_1e6() {
     let mut worst: f64 = 0.0;
     for (name, basis) in bases(12).into_iter().take(3) {
         let t = basis.triangulation();
-        let pts = random_points3(&mut r, t.vertex_count());
+        let pts = random_vec3_triples(&mut r, t.vertex_count());
         let weights: Vec<[f64; 3]> = (0..t.vertex_count())
             .map(|_| std::array::from_fn(|_| 1e6f64.powf(uniform(&mut r, 0.0, 1.0))))
             .collect();
@@ -711,11 +676,11 @@ fn local_updates_match_a_full_rebuild() {
     let mut r = rng(49);
     for (name, basis) in bases(13) {
         let t = basis.triangulation();
-        let mut pts = random_points3(&mut r, t.vertex_count());
+        let mut pts = random_vec3_triples(&mut r, t.vertex_count());
         let mut s = PsSpline::new(basis.clone(), pts.clone()).unwrap();
         for _ in 0..5 {
             let i = r_index(&mut r, t.vertex_count());
-            let new = random_points3(&mut r, 1)[0];
+            let new = random_vec3_triples(&mut r, 1)[0];
             pts[i] = new;
             s.set_coefficients(i, new).unwrap();
         }

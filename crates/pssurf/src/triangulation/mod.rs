@@ -214,6 +214,22 @@ impl Triangulation {
     }
 }
 
+/// The first pair (smaller index first) of points with identical coordinates, if any.
+pub fn duplicate_points(points: &[Point2<f64>]) -> Option<(usize, usize)> {
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_unstable_by(|&a, &b| {
+        points[a]
+            .x
+            .total_cmp(&points[b].x)
+            .then(points[a].y.total_cmp(&points[b].y))
+            .then(a.cmp(&b))
+    });
+    order
+        .windows(2)
+        .find(|w| points[w[0]] == points[w[1]])
+        .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
+}
+
 /// Indices of `points` sorted by their Morton (Z-order) code on a 2^16 × 2^16 grid over
 /// their bounding box.
 pub fn morton_order(points: &[Point2<f64>]) -> Vec<u32> {

@@ -54,23 +54,10 @@ pub(super) fn build(
 }
 
 pub(super) fn check_duplicates(vertices: &[Point2<f64>]) -> Result<(), E> {
-    let mut order: Vec<usize> = (0..vertices.len()).collect();
-    order.sort_unstable_by(|&a, &b| {
-        vertices[a]
-            .x
-            .total_cmp(&vertices[b].x)
-            .then(vertices[a].y.total_cmp(&vertices[b].y))
-            .then(a.cmp(&b))
-    });
-    for w in order.windows(2) {
-        if vertices[w[0]] == vertices[w[1]] {
-            return Err(E::DuplicateVertex {
-                first: w[0].min(w[1]),
-                second: w[0].max(w[1]),
-            });
-        }
+    match super::duplicate_points(vertices) {
+        Some((first, second)) => Err(E::DuplicateVertex { first, second }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 fn check_triangles(vertices: &[Point2<f64>], triangles: &[[usize; 3]]) -> Result<Vec<[u32; 3]>, E> {
