@@ -24,6 +24,7 @@ pub mod quadrature;
 pub mod scattered;
 pub mod surface;
 pub mod triangulation;
+pub mod ups;
 pub mod vector;
 
 #[cfg(doctest)]

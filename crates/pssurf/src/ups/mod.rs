@@ -1,0 +1,77 @@
+//! Uniform Powell–Sabin (UPS) splines on triangulations of lattice polygons (thesis chapter 4):
+//! the fixed PS-triangles, subdivision, display by subdivision, the lifting wavelet transform,
+//! thresholding and noise.
+
+pub mod grid;
+pub mod lattice;
+pub mod spline;
+pub mod subdivision;
+
+pub use grid::UpsGrid;
+pub use lattice::{Lattice, LatticePoint, LatticePolygon};
+pub use spline::{Ups, fixed_ps_triangle};
+
+use thiserror::Error;
+
+/// Errors from building and transforming UPS-splines.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum UpsError {
+    /// A lattice polygon needs at least three distinct corners.
+    #[error("a lattice polygon needs at least three distinct corners")]
+    TooFewCorners,
+    /// An edge of the polygon does not follow a grid line.
+    #[error(
+        "edge {edge} of the polygon does not lie on a grid line (steps must be multiples of (1, 0), (0, 1) or (1, −1) in lattice coordinates)"
+    )]
+    EdgeOffGrid {
+        /// The edge (from corner `edge` to the next).
+        edge: usize,
+    },
+    /// The polygon has no area.
+    #[error("the polygon encloses no area")]
+    ZeroArea,
+    /// Two edges of the polygon cross or touch.
+    #[error("edges {} and {} of the polygon cross or touch", edges.0, edges.1)]
+    SelfIntersecting {
+        /// The two edges.
+        edges: (usize, usize),
+    },
+    /// Only 3-, 4-, 5- and 6-sided standard polygons exist.
+    #[error(
+        "there is no standard {0}-sided lattice polygon (use 3, 4, 5 or 6, or give the polygon)"
+    )]
+    UnsupportedSides(usize),
+    /// The base must be positive and finite (and the origin finite).
+    #[error("the lattice base must be a positive finite number, not {0}")]
+    InvalidBase(f64),
+    /// The block matrix would be too large.
+    #[error("the lattice polygon is too large")]
+    TooLarge,
+    /// A control array has the wrong length.
+    #[error("expected {expected} control triples, found {found}")]
+    WrongBlockCount {
+        /// Needed.
+        expected: usize,
+        /// Given.
+        found: usize,
+    },
+    /// The triangulation cannot be coarsened that many times.
+    #[error(
+        "the triangulation allows only {available} coarsening levels, not {requested}: every corner of the polygon must lie on the lattice of base 2^levels·B"
+    )]
+    TooManyLevels {
+        /// Asked for.
+        requested: u32,
+        /// Possible.
+        available: u32,
+    },
+    /// The general triangulation could not be built.
+    #[error("{0}")]
+    Triangulation(crate::triangulation::TriangulationError),
+    /// The general PS-spline could not be built.
+    #[error("{0}")]
+    Ps(crate::ps::PsError),
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,319 @@
+//! UPS tests: every rule is checked against the general PS-spline machinery.
+
+use nalgebra::{Point2, SVector, Vector3};
+
+use super::subdivision::{new_vertex_rule, old_vertex_rule};
+use super::*;
+use crate::ps::Hermite;
+use crate::ps::net::{self, Weighted};
+use crate::test_util::*;
+
+pub(super) fn lattice() -> Lattice {
+    Lattice {
+        base: 0.7,
+        origin: Point2::new(-0.3, 0.2),
+    }
+}
+
+/// The standard shapes and a non-convex polygon (an L made of two rhombi).
+pub(super) fn grids(n: i64) -> Vec<(String, UpsGrid)> {
+    let mut out: Vec<(String, UpsGrid)> = (3..=6)
+        .map(|s| {
+            (
+                format!("{s}-sided"),
+                UpsGrid::new(lattice(), LatticePolygon::standard(s, n).unwrap()).unwrap(),
+            )
+        })
+        .collect();
+    let l = LatticePolygon::new(vec![
+        [0, 0],
+        [2 * n, 0],
+        [2 * n, n],
+        [n, n],
+        [n, 2 * n],
+        [0, 2 * n],
+    ])
+    .unwrap();
+    out.push(("L-shaped".into(), UpsGrid::new(lattice(), l).unwrap()));
+    out
+}
+
+/// A smooth test function with its gradient.
+pub(super) fn wave(p: Point2<f64>) -> Hermite<Vector3<f64>> {
+    let (x, y) = (p.x, p.y);
+    let z = (1.3 * x).sin() * (0.7 * y).cos() + 0.2 * x * y;
+    let zx = 1.3 * (1.3 * x).cos() * (0.7 * y).cos() + 0.2 * y;
+    let zy = -0.7 * (1.3 * x).sin() * (0.7 * y).sin() + 0.2 * x;
+    Hermite {
+        value: Vector3::new(x + 0.1 * y * y, y, z),
+        dx: Vector3::new(1.0, 0.0, zx),
+        dy: Vector3::new(0.2 * y, 1.0, zy),
+    }
+}
+
+#[test]
+fn standard_polygons_and_their_counts() {
+    for (name, g) in grids(2) {
+        let t = g.triangulation().unwrap();
+        assert_eq!(t.vertex_count(), g.vertex_count(), "{name}");
+        // Every triangle is equilateral with side B.
+        for k in 0..t.triangle_count() {
+            let tr = t.triangle_geometry(k);
+            assert!(
+                (tr.area() - 0.25 * 3f64.sqrt() * 0.49).abs() < 1e-14,
+                "{name}"
+            );
+        }
+    }
+    let tri = UpsGrid::new(lattice(), LatticePolygon::standard(3, 4).unwrap()).unwrap();
+    assert_eq!((tri.vertex_count(), tri.triangle_count()), (15, 16));
+    let hex = UpsGrid::new(lattice(), LatticePolygon::standard(6, 1).unwrap()).unwrap();
+    assert_eq!((hex.vertex_count(), hex.triangle_count()), (7, 6));
+    assert_eq!(hex.molecule_number(hex.slot_of([1, 1]).unwrap()), 6);
+}
+
+#[test]
+fn bad_polygons_are_rejected() {
+    assert_eq!(
+        LatticePolygon::new(vec![[0, 0], [1, 0]]).unwrap_err(),
+        UpsError::TooFewCorners
+    );
+    assert_eq!(
+        LatticePolygon::new(vec![[0, 0], [2, 1], [0, 2]]).unwrap_err(),
+        UpsError::EdgeOffGrid { edge: 0 }
+    );
+    assert_eq!(
+        LatticePolygon::new(vec![[0, 0], [2, 0], [4, 0]]).unwrap_err(),
+        UpsError::ZeroArea
+    );
+    // A bow-tie: (0,0) → (2,0) → (0,2) → (2,2)? (0,2)→(2,2) is horizontal, (2,2)→(0,0) is not
+    // on a grid line; use a figure eight of two triangles instead.
+    let e = LatticePolygon::new(vec![[0, 0], [2, 0], [0, 2], [0, 4], [2, 2], [-2, 2]]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            UpsError::SelfIntersecting { .. } | UpsError::EdgeOffGrid { .. }
+        ),
+        "{e}"
+    );
+    assert_eq!(
+        LatticePolygon::standard(7, 2).unwrap_err(),
+        UpsError::UnsupportedSides(7)
+    );
+    let bad = Lattice {
+        base: -1.0,
+        origin: Point2::origin(),
+    };
+    assert_eq!(
+        UpsGrid::new(bad, LatticePolygon::standard(3, 2).unwrap()).unwrap_err(),
+        UpsError::InvalidBase(-1.0)
+    );
+    // Clockwise input is accepted and reversed.
+    assert!(LatticePolygon::new(vec![[0, 0], [0, 3], [3, 0]]).is_ok());
+}
+
+#[test]
+fn fixed_ps_triangles_give_4_6_to_4_9() {
+    for (name, g) in grids(2) {
+        let basis = Ups::<f64>::hermite(g.clone(), |_| Hermite {
+            value: 0.0,
+            dx: 0.0,
+            dy: 0.0,
+        })
+        .basis()
+        .unwrap();
+        let b = g.lattice().base;
+        let r3 = 3f64.sqrt();
+        for i in 0..basis.triangulation().vertex_count() {
+            let close = |a: [f64; 3], e: [f64; 3]| {
+                (0..3).all(|k| (a[k] - e[k]).abs() < 1e-12 * (1.0 + e[k].abs()))
+            };
+            assert!(close(basis.alpha(i), [1.0 / 3.0; 3]), "{name} (4.6)");
+            assert!(
+                close(
+                    basis.beta(i),
+                    [-4.0 / (3.0 * b), 2.0 / (3.0 * b), 2.0 / (3.0 * b)]
+                ),
+                "{name} (4.7)"
+            );
+            assert!(
+                close(
+                    basis.gamma(i),
+                    [0.0, -2.0 * r3 / (3.0 * b), 2.0 * r3 / (3.0 * b)]
+                ),
+                "{name} (4.8)"
+            );
+        }
+        // (4.9) against the general Hermite solution.
+        let ups = Ups::hermite(g.clone(), wave);
+        let general = crate::ps::PsSpline::interpolate(std::sync::Arc::new(basis), wave).unwrap();
+        for (a, b) in ups.vertex_values().iter().zip(general.coefficients()) {
+            for k in 0..3 {
+                assert!((a[k] - b[k]).norm() < 1e-13, "{name}");
+            }
+        }
+    }
+}
+
+#[test]
+fn bezier_ordinates_are_4_10_to_4_16() {
+    // On the up triangle at its lower-left vertex V_i: s, u (towards +x), v (towards +60°),
+    // w (towards Z) have the coefficients of (4.10)–(4.13); λ = 1/2 and a = 1/3 give
+    // (4.14)–(4.16).
+    let g = UpsGrid::new(lattice(), LatticePolygon::standard(3, 1).unwrap()).unwrap();
+    let basis = Ups::<f64>::hermite(g, |_| Hermite {
+        value: 0.0,
+        dx: 0.0,
+        dy: 0.0,
+    })
+    .basis()
+    .unwrap();
+    let t = basis.triangulation();
+    let st = basis.stencil(0);
+    let corner = (0..3)
+        .find(|&c| t.vertex(t.triangle(0)[c]) == lattice().point([0, 0]))
+        .unwrap();
+    let rows = st.rows[corner];
+    let third = 1.0 / 3.0;
+    let expect = [
+        [third; 3],
+        [0.0, 0.5, 0.5],
+        [1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0],
+        [0.0, third, 2.0 / 3.0],
+    ];
+    for (r, e) in rows.iter().zip(&expect) {
+        for k in 0..3 {
+            assert!((r[k] - e[k]).abs() < 1e-14, "{rows:?}");
+        }
+    }
+    assert!(st.lambda.iter().all(|&l| (l - 0.5).abs() < 1e-14));
+    assert!(st.z.iter().all(|&a| (a - third).abs() < 1e-14));
+    let _ = net::OM;
+}
+
+#[test]
+fn integration_weights_match_the_general_basis_integrals() {
+    for (name, g) in grids(2) {
+        let ups = Ups::hermite(g.clone(), wave);
+        let general = ups.to_ps().unwrap();
+        let i1 = ups.integral();
+        let i2 = general.integral();
+        assert!(
+            (i1 - i2).norm() < 1e-12 * (1.0 + i2.norm()),
+            "{name}: {i1:?} vs {i2:?}"
+        );
+        // Weight by weight, (4.17)–(4.21).
+        let area = 0.25 * 3f64.sqrt() * 0.49;
+        let bi = general.basis().basis_integrals();
+        for (k, &s) in g.real_slots().iter().enumerate() {
+            let w = spline::integration_weights(&g.sectors(s));
+            for j in 0..3 {
+                assert!(
+                    (w[j] * area - bi[k][j]).abs() < 1e-14,
+                    "{name}: slot {s} weight {j}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn subdivision_leaves_the_surface_unchanged() {
+    let mut r = rng(80);
+    for (name, g) in grids(2) {
+        let s0 = Ups::hermite(g.clone(), wave);
+        let s1 = s0.subdivide();
+        let s2 = s1.subdivide();
+        assert_eq!(s1.grid().vertex_count(), g.refined().vertex_count());
+        let (p0, p1, p2) = (
+            s0.to_ps().unwrap(),
+            s1.to_ps().unwrap(),
+            s2.to_ps().unwrap(),
+        );
+        let t = p0.basis().triangulation();
+        for _ in 0..200 {
+            let k = (uniform(&mut r, 0.0, t.triangle_count() as f64) as usize)
+                .min(t.triangle_count() - 1);
+            let p = t.triangle_geometry(k).point(random_bary(&mut r));
+            let (a, b, c) = (
+                p0.eval(p).unwrap(),
+                p1.eval(p).unwrap(),
+                p2.eval(p).unwrap(),
+            );
+            assert!(
+                (a - b).norm() < 1e-12 && (a - c).norm() < 1e-12,
+                "{name}: {:e} {:e}",
+                (a - b).norm(),
+                (a - c).norm()
+            );
+            // First derivatives too (C¹ everywhere, so any side of an edge will do).
+            let (ja, jc) = (p0.jet(p).unwrap().jet, p2.jet(p).unwrap().jet);
+            assert!(
+                (ja.dx - jc.dx).norm() < 1e-11 && (ja.dy - jc.dy).norm() < 1e-11,
+                "{name}"
+            );
+        }
+        // Functional and rational UPS subdivide the same way.
+        let f0 = Ups::hermite(g.clone(), |p| {
+            let h = wave(p);
+            Hermite {
+                value: h.value.z,
+                dx: h.dx.z,
+                dy: h.dy.z,
+            }
+        });
+        let f1 = f0.subdivide();
+        let (q0, q1) = (f0.to_ps().unwrap(), f1.to_ps().unwrap());
+        for _ in 0..50 {
+            let p = t.triangle_geometry(0).point(random_bary(&mut r));
+            assert!(
+                (q0.eval(p).unwrap() - q1.eval(p).unwrap()).abs() < 1e-12,
+                "{name}"
+            );
+        }
+        let pts = s0.vertex_values();
+        let w: Vec<[f64; 3]> = pts
+            .iter()
+            .map(|_| std::array::from_fn(|_| 10f64.powf(uniform(&mut r, -1.0, 1.0))))
+            .collect();
+        let rat = Ups::rational(g.clone(), pts, w).unwrap();
+        let (n0, n1) = (
+            rat.to_nurps().unwrap(),
+            rat.subdivide_times(2).to_nurps().unwrap(),
+        );
+        for _ in 0..50 {
+            let k = (uniform(&mut r, 0.0, t.triangle_count() as f64) as usize)
+                .min(t.triangle_count() - 1);
+            let p = t.triangle_geometry(k).point(random_bary(&mut r));
+            assert!(
+                (n0.eval(p).unwrap() - n1.eval(p).unwrap()).norm() < 1e-12,
+                "{name} rational"
+            );
+        }
+    }
+}
+
+#[test]
+fn subdivision_stencils_are_convex() {
+    // Unit vectors in R⁶ as the control values of the two old vertices expose the weights.
+    let e = |k: usize| {
+        let mut v = SVector::<f64, 6>::zeros();
+        v[k] = 1.0;
+        v
+    };
+    let ci = [e(0), e(1), e(2)];
+    let cj = [e(3), e(4), e(5)];
+    let mut all = vec![];
+    all.extend(old_vertex_rule(ci));
+    for shift in 0..3 {
+        all.extend(new_vertex_rule(ci, cj, shift));
+    }
+    for w in all {
+        assert!(w.iter().all(|&x| x >= 0.0), "{w:?}");
+        assert!((w.sum() - 1.0).abs() < 1e-15, "{w:?}");
+    }
+    let _ = Weighted {
+        point: 0.0,
+        weight: 1.0,
+    };
+}
