@@ -42,6 +42,8 @@ pub fn new_vertex_rule<T: Combine>(ci: [T; 3], cj: [T; 3], shift: usize) -> [T; 
 /// from the upper to the lower end (240°, shift 2); edges (odd, odd) from (a+1, b) to
 /// (a, b+1) (120°, shift 1).
 #[inline]
+// (i − 1)/2 and (i + 1)/2 name the two neighbours symmetrically; `div_ceil` would hide that.
+#[allow(clippy::manual_div_ceil)]
 pub fn edge_of_new_vertex(i: usize, j: usize) -> ((usize, usize), (usize, usize), usize) {
     match (i % 2, j % 2) {
         (1, 0) => (((i - 1) / 2, j / 2), ((i + 1) / 2, j / 2), 0),
