@@ -19,6 +19,7 @@ pub mod bezier;
 pub mod geometry;
 #[cfg(feature = "io")]
 pub mod io;
+pub mod mesh;
 pub mod ps;
 pub mod quadrature;
 pub mod scattered;

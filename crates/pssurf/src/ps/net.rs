@@ -71,6 +71,8 @@ pub trait Combine: Copy + Send + Sync + 'static {
     fn combine3(c: [f64; 3], p: [Self; 3]) -> Self;
     /// The two-term version, (3.58)–(3.62).
     fn combine2(c: [f64; 2], p: [Self; 2]) -> Self;
+    /// Any number of terms (`c` and `p` of equal length, at least one).
+    fn combine(c: &[f64], p: &[Self]) -> Self;
 }
 
 impl<V: Vector> Combine for V {
@@ -81,6 +83,10 @@ impl<V: Vector> Combine for V {
     #[inline]
     fn combine2(c: [f64; 2], p: [Self; 2]) -> Self {
         p[0] * c[0] + p[1] * c[1]
+    }
+    #[inline]
+    fn combine(c: &[f64], p: &[Self]) -> Self {
+        crate::vector::combine(c, p)
     }
 }
 
@@ -108,6 +114,14 @@ impl<V: Vector> Combine for Weighted<V> {
         let a = [c[0] * p[0].weight, c[1] * p[1].weight];
         let weight = a[0] + a[1];
         let point = p[0].point * (a[0] / weight) + p[1].point * (a[1] / weight);
+        Weighted { point, weight }
+    }
+    fn combine(c: &[f64], p: &[Self]) -> Self {
+        let weight: f64 = c.iter().zip(p).map(|(c, p)| c * p.weight).sum();
+        let mut point = V::zero();
+        for (c, q) in c.iter().zip(p) {
+            point += q.point * (c * q.weight / weight);
+        }
         Weighted { point, weight }
     }
 }

@@ -2,6 +2,7 @@
 //! the fixed PS-triangles, subdivision, display by subdivision, the lifting wavelet transform,
 //! thresholding and noise.
 
+pub mod display;
 pub mod grid;
 pub mod lattice;
 pub mod spline;

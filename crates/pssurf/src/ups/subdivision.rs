@@ -96,3 +96,72 @@ impl<T: Combine + Default> Ups<T> {
 pub fn refined_grid(grid: &UpsGrid) -> UpsGrid {
     grid.refined()
 }
+
+/// The weights of k-subdivision along a horizontal edge V1 → V2 = V1 + (B, 0) (thesis
+/// 4.4.3): the control triple at W_l = ((k − l) V1 + l V2)/k of the spline refined to base
+/// B/k is `w[m] · (c1[0], c1[1], c1[2], c2[0], c2[1], c2[2])` for m = 0, 1, 2.
+///
+/// For l ≤ k/2, (4.37)–(4.39); for l ≥ k/2, (4.40)–(4.42), where the extracted text prints
+/// the denominator of the l(l+2) terms as k²: it is 3k² (only then does every row sum to 1
+/// and do the two halves agree at l = k/2 and reduce to (4.24) at l = k). All weights are
+/// non-negative (convex combinations) for k ≥ 2.
+pub fn edge_weights(k: usize, l: usize) -> [[f64; 6]; 3] {
+    assert!(k >= 1 && l <= k, "0 ≤ l ≤ k");
+    let (k, l) = (k as f64, l as f64);
+    let d = 3.0 * k * k;
+    if 2.0 * l <= k {
+        let a = (k - 2.0 * l) * (k - 2.0 * l + 2.0) / d;
+        let b = (k * k + 2.0 * k * l - 5.0 * l * l - k + 5.0 * l) / d;
+        let c = 4.0 * l * (l - 1.0) / d;
+        let e = l * (l - 1.0) / d;
+        let f = (k - 2.0 * l) * (k - 2.0 * l - 1.0) / d;
+        let g = (k * k + 2.0 * k * l - 5.0 * l * l + 2.0 * k - 4.0 * l) / d;
+        let h = (k * k + 2.0 * k * l - 5.0 * l * l - k - l) / d;
+        let i = 2.0 * l * (2.0 * l + 1.0) / d;
+        let j = l * (l + 2.0) / d;
+        [[a, b, b, c, e, e], [f, g, h, i, j, e], [f, h, g, i, e, j]]
+    } else {
+        let kk = k * k;
+        let a = (l - k - 1.0) * (l - k) / kk;
+        let b = (-3.0 * kk - 6.0 * k + 12.0 * k * l + 8.0 * l - 8.0 * l * l) / d;
+        let e = l * (l - 1.0) / d;
+        let f = (k - l) * (k - l) / kk;
+        let g = (k - l) * (k - l - 1.0) / kk;
+        let h = (-3.0 * kk + 12.0 * k * l + 3.0 * k - 4.0 * l - 8.0 * l * l) / d;
+        let j = l * (l + 2.0) / d;
+        [
+            [0.0, a, a, b, e, e],
+            [0.0, f, g, h, j, e],
+            [0.0, g, f, h, e, j],
+        ]
+    }
+}
+
+/// k-subdivision along an edge of Δ: the control triples at the k + 1 points
+/// W_l = ((k − l) V1 + l V2)/k of the spline refined to base B/k, from the triples `c1`,
+/// `c2` at V1 and V2, where V2 lies in direction `dir` (a [`super::grid::NEIGHBORS`] index)
+/// from V1. Convex combinations of the original control values.
+pub fn edge_subdivision<T: Combine>(c1: [T; 3], c2: [T; 3], k: usize, dir: usize) -> Vec<[T; 3]> {
+    assert!(dir < 6 && k >= 1);
+    // Directions 0°, 120°, 240° are the horizontal rule turned by shift × 120°; the others
+    // are those edges run backwards.
+    if dir % 2 == 1 {
+        let mut out = edge_subdivision(c2, c1, k, (dir + 3) % 6);
+        out.reverse();
+        return out;
+    }
+    let shift = dir / 2;
+    let s = |m: usize| (m + shift) % 3;
+    (0..=k)
+        .map(|l| {
+            let w = edge_weights(k, l);
+            let mut out = [c1[0]; 3];
+            for m in 0..3 {
+                // In the turned frame, value σ(m) of W combines values σ(·) of V1 and V2.
+                let pts = [c1[s(0)], c1[s(1)], c1[s(2)], c2[s(0)], c2[s(1)], c2[s(2)]];
+                out[s(m)] = T::combine(&w[m], &pts);
+            }
+            out
+        })
+        .collect()
+}

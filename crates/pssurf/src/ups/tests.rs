@@ -317,3 +317,142 @@ fn subdivision_stencils_are_convex() {
         weight: 1.0,
     };
 }
+
+#[test]
+fn k_subdivision_along_edges_matches_hermite_data_of_the_spline() {
+    // The refined control triples at W_l are the Hermite coefficients (4.9), with base B/k,
+    // of the spline's value and gradient at W_l.
+    let mut r = rng(81);
+    let g = grids(2).remove(3).1; // the hexagon: edges in all six directions
+    let ups = Ups::hermite(g.clone(), wave);
+    let general = ups.to_ps().unwrap();
+    let lat = *g.lattice();
+    for s in g.real_slots() {
+        for dir in 0..6 {
+            let Some(nb) = g.neighbor(s, dir) else {
+                continue;
+            };
+            if !g.has_edge(s, dir) {
+                continue;
+            }
+            let k = 2 + (uniform(&mut r, 0.0, 8.0) as usize);
+            let got = subdivision::edge_subdivision(ups.blocks()[s], ups.blocks()[nb], k, dir);
+            let (p1, p2) = (
+                lat.point(g.lattice_point(s)),
+                lat.point(g.lattice_point(nb)),
+            );
+            let fine = Lattice {
+                base: lat.base / k as f64,
+                origin: lat.origin,
+            };
+            for (l, c) in got.iter().enumerate() {
+                let w = Point2::from(
+                    p1.coords * ((k - l) as f64 / k as f64) + p2.coords * (l as f64 / k as f64),
+                );
+                let j = general.jet(w).unwrap().jet;
+                let q = fixed_ps_triangle(&fine, w);
+                for m in 0..3 {
+                    let want = j.value + j.dx * (q.v[m].x - w.x) + j.dy * (q.v[m].y - w.y);
+                    assert!(
+                        (c[m] - want).norm() < 1e-12,
+                        "dir {dir} k {k} l {l} m {m}: {:e}",
+                        (c[m] - want).norm()
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn k_subdivision_weights_are_convex_and_extend_dyadic_subdivision() {
+    for k in 1..60 {
+        for l in 0..=k {
+            for row in subdivision::edge_weights(k, l) {
+                assert!(row.iter().all(|&w| w >= -1e-15), "k {k} l {l}: {row:?}");
+                assert!((row.iter().sum::<f64>() - 1.0).abs() < 1e-14, "k {k} l {l}");
+            }
+        }
+    }
+    // k = 2 gives (4.24) at the ends and (4.26)–(4.28) in the middle.
+    let e = |k: usize| {
+        let mut v = SVector::<f64, 6>::zeros();
+        v[k] = 1.0;
+        v
+    };
+    let (ci, cj) = ([e(0), e(1), e(2)], [e(3), e(4), e(5)]);
+    for dir in 0..6 {
+        let got = subdivision::edge_subdivision(ci, cj, 2, dir);
+        assert_eq!(got[0], old_vertex_rule(ci));
+        assert_eq!(got[2], old_vertex_rule(cj));
+    }
+    assert_eq!(
+        subdivision::edge_subdivision(ci, cj, 2, 0)[1],
+        new_vertex_rule(ci, cj, 0)
+    );
+}
+
+#[test]
+fn display_mesh_lies_on_the_surface_with_its_normals() {
+    let mut r = rng(82);
+    for (name, g) in grids(2) {
+        let ups = Ups::hermite(g.clone(), wave);
+        let general = ups.to_ps().unwrap();
+        for level in 0..3 {
+            let mut mesh = crate::mesh::TriMesh::default();
+            ups.tessellate(level, &mut mesh);
+            assert_eq!(
+                mesh.triangles.len(),
+                g.triangle_count() * 4usize.pow(level as u32),
+                "{name}"
+            );
+            for k in 0..mesh.positions.len() {
+                if uniform(&mut r, 0.0, 1.0) > 0.3 {
+                    continue;
+                }
+                let j = general.jet(mesh.uvs[k]).unwrap().jet;
+                assert!(
+                    (mesh.positions[k] - j.value).norm() < 1e-12,
+                    "{name} level {level}"
+                );
+                let n = j.dx.cross(&j.dy).normalize();
+                assert!(
+                    (mesh.normals[k] - n).norm() < 1e-10,
+                    "{name}: normal {:?} vs {n:?}",
+                    mesh.normals[k]
+                );
+            }
+            // Counter-clockwise in the domain.
+            for t in &mesh.triangles {
+                let (a, b, c) = (
+                    mesh.uvs[t[0] as usize],
+                    mesh.uvs[t[1] as usize],
+                    mesh.uvs[t[2] as usize],
+                );
+                assert!(crate::geometry::orient(a, b, c) > 0.0);
+            }
+        }
+        // A rational UPS: points on the NURPS surface.
+        let pts = ups.vertex_values();
+        let w: Vec<[f64; 3]> = pts
+            .iter()
+            .map(|_| std::array::from_fn(|_| uniform(&mut r, 0.2, 5.0)))
+            .collect();
+        let rat = Ups::rational(g.clone(), pts, w).unwrap();
+        let nurps = rat.to_nurps().unwrap();
+        let mut mesh = crate::mesh::TriMesh::default();
+        rat.tessellate(2, &mut mesh);
+        for k in (0..mesh.positions.len()).step_by(7) {
+            let j = nurps.jet(mesh.uvs[k]).unwrap().jet;
+            assert!(
+                (mesh.positions[k] - j.value).norm() < 1e-12,
+                "{name} rational"
+            );
+            let n = j.dx.cross(&j.dy).normalize();
+            assert!(
+                (mesh.normals[k] - n).norm() < 1e-9,
+                "{name} rational normal"
+            );
+        }
+    }
+}
