@@ -7,6 +7,7 @@ pub mod grid;
 pub mod lattice;
 pub mod spline;
 pub mod subdivision;
+pub mod wavelet;
 
 pub use grid::UpsGrid;
 pub use lattice::{Lattice, LatticePoint, LatticePolygon};

@@ -456,3 +456,154 @@ fn display_mesh_lies_on_the_surface_with_its_normals() {
         }
     }
 }
+
+fn noisy(ups: &Ups<Vector3<f64>>, r: &mut rand_chacha::ChaCha8Rng, a: f64) -> Ups<Vector3<f64>> {
+    let mut out = ups.clone();
+    let g = out.grid().clone();
+    for s in g.real_slots() {
+        for c in out.blocks_mut()[s].iter_mut() {
+            *c += Vector3::new(uniform(r, -a, a), uniform(r, -a, a), uniform(r, -a, a));
+        }
+    }
+    out
+}
+
+#[test]
+fn wavelet_transform_reconstructs_perfectly() {
+    let mut r = rng(83);
+    for (name, g) in grids(8) {
+        let levels = g.coarsening_levels().min(3);
+        assert_eq!(levels, 3, "{name}");
+        let ups = noisy(&Ups::hermite(g.clone(), wave), &mut r, 0.05);
+        for f in 1..=levels {
+            let dec = ups.wavelet_transform(f).unwrap();
+            assert_eq!(dec.levels.len(), f as usize);
+            let back = dec.reconstruct();
+            assert_eq!(back.grid(), ups.grid());
+            let worst = back
+                .blocks()
+                .iter()
+                .zip(ups.blocks())
+                .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).norm()))
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-13, "{name} f={f}: {worst:e}");
+        }
+        assert!(matches!(
+            ups.wavelet_transform(4),
+            Err(UpsError::TooManyLevels {
+                requested: 4,
+                available: 3
+            })
+        ));
+    }
+}
+
+#[test]
+fn quadratics_have_no_details_and_scaling_matches_4_24() {
+    let mut r = rng(84);
+    for (name, g) in grids(4) {
+        let q = |p: Point2<f64>| Hermite {
+            value: Vector3::new(
+                p.x,
+                p.y,
+                0.3 * p.x * p.x - 0.2 * p.x * p.y + 0.1 * p.y * p.y + p.x,
+            ),
+            dx: Vector3::new(1.0, 0.0, 0.6 * p.x - 0.2 * p.y + 1.0),
+            dy: Vector3::new(0.0, 1.0, -0.2 * p.x + 0.2 * p.y),
+        };
+        let dec = Ups::hermite(g.clone(), q).wavelet_transform(2).unwrap();
+        for level in &dec.levels {
+            for s in level.detail_slots() {
+                for d in level.details[s] {
+                    assert!(d.norm() < 1e-13, "{name}: detail {d:?}");
+                }
+            }
+        }
+    }
+    // The factored scaling step (4.57, corrected) is the old-vertex rule (4.24), and the
+    // forward transform's unscaling inverts it.
+    for _ in 0..20 {
+        let c: [Vector3<f64>; 3] = random_vec3_triples(&mut r, 1)[0];
+        let (a, b) = (wavelet::scale(c), old_vertex_rule(c));
+        let back = wavelet::unscale(a);
+        for k in 0..3 {
+            assert!((a[k] - b[k]).norm() < 1e-15);
+            assert!((back[k] - c[k]).norm() < 1e-15);
+        }
+    }
+}
+
+#[test]
+fn every_complementary_sequence_sums_to_zero() {
+    // One detail coefficient set to one, everything else zero, one inverse step: the
+    // coefficients must sum to zero — in the interior and in every boundary configuration.
+    for (name, g) in grids(4) {
+        let coarse_grid = g.coarsened().unwrap();
+        let k = wavelet::update_weights(&g, &coarse_grid);
+        // Interior coarse vertices have k = 1/8 (4.51).
+        for s in coarse_grid.real_slots() {
+            if !coarse_grid.is_boundary(s) {
+                assert!(k[s].iter().all(|&x| (x - 0.125).abs() < 1e-15), "{name}");
+            }
+        }
+        let zero = Ups::<f64>::from_parts(coarse_grid.clone(), vec![[0.0; 3]; coarse_grid.slots()]);
+        let template = wavelet::DetailLevel {
+            grid: g.clone(),
+            details: vec![[0.0f64; 3]; g.slots()],
+        };
+        for s in template.detail_slots().collect::<Vec<_>>() {
+            for c in 0..3 {
+                let mut level = template.clone();
+                level.details[s][c] = 1.0;
+                let fine = Ups::wavelet_inverse_step(&zero, &level);
+                let sum: f64 = g
+                    .real_slots()
+                    .iter()
+                    .map(|&v| fine.blocks()[v].iter().sum::<f64>())
+                    .sum();
+                assert!(
+                    sum.abs() < 1e-14,
+                    "{name}: slot {s} component {c}: sum {sum:e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn interior_wavelets_have_zero_integral() {
+    // Property 4.3, checked with the general PS integral (2.61)–(2.62).
+    let g = UpsGrid::new(lattice(), LatticePolygon::standard(6, 8).unwrap()).unwrap();
+    let coarse_grid = g.coarsened().unwrap();
+    let zero = Ups::<f64>::from_parts(coarse_grid.clone(), vec![[0.0; 3]; coarse_grid.slots()]);
+    let template = wavelet::DetailLevel {
+        grid: g.clone(),
+        details: vec![[0.0f64; 3]; g.slots()],
+    };
+    let mut interior = 0;
+    let mut boundary_nonzero = 0;
+    for s in template.detail_slots().collect::<Vec<_>>() {
+        let mut level = template.clone();
+        level.details[s][1] = 1.0;
+        let fine = Ups::wavelet_inverse_step(&zero, &level);
+        let integral = fine.to_ps().unwrap().integral();
+        // The support: fine slots with non-zero coefficients; interior if none is on ∂Δ.
+        let touches = g
+            .real_slots()
+            .iter()
+            .any(|&v| g.is_boundary(v) && fine.blocks()[v].iter().any(|&x| x != 0.0));
+        if touches {
+            if integral.abs() > 1e-6 {
+                boundary_nonzero += 1;
+            }
+        } else {
+            interior += 1;
+            assert!(integral.abs() < 1e-14, "slot {s}: integral {integral:e}");
+        }
+    }
+    assert!(interior > 20, "too few interior wavelets ({interior})");
+    assert!(
+        boundary_nonzero > 0,
+        "boundary wavelets need not have zero integral"
+    );
+}
