@@ -5,8 +5,10 @@
 pub mod display;
 pub mod grid;
 pub mod lattice;
+pub mod noise;
 pub mod spline;
 pub mod subdivision;
+pub mod threshold;
 pub mod wavelet;
 
 pub use grid::UpsGrid;

@@ -607,3 +607,195 @@ fn interior_wavelets_have_zero_integral() {
         "boundary wavelets need not have zero integral"
     );
 }
+
+mod denoise {
+    use super::*;
+    use crate::ups::noise::NoiseKind;
+    use crate::ups::threshold::*;
+
+    /// The seed's experiment: a smooth surface, subdivided three times, noise added.
+    fn experiment() -> (Ups<Vector3<f64>>, Ups<Vector3<f64>>) {
+        let g = UpsGrid::new(lattice(), LatticePolygon::standard(6, 2).unwrap()).unwrap();
+        let smooth = Ups::hermite(g, wave).subdivide_times(3);
+        let noisy = smooth.with_noise(0.02, NoiseKind::Uniform, 7);
+        (smooth, noisy)
+    }
+
+    /// The mean curvature at fixed random points of the surface.
+    fn mean_curvature(s: &Ups<Vector3<f64>>) -> Vec<f64> {
+        let ps = s.to_ps().unwrap();
+        let t = ps.basis().triangulation();
+        let mut r = rng(5);
+        (0..3000)
+            .map(|_| {
+                let k = (uniform(&mut r, 0.0, t.triangle_count() as f64) as usize)
+                    .min(t.triangle_count() - 1);
+                let p = t.triangle_geometry(k).point(random_bary(&mut r));
+                let j = ps.jet(p).unwrap().jet;
+                let n = j.dx.cross(&j.dy).normalize();
+                let (e, f, g) = (j.dx.dot(&j.dx), j.dx.dot(&j.dy), j.dy.dot(&j.dy));
+                let (l, m, nn) = (n.dot(&j.dxx), n.dot(&j.dxy), n.dot(&j.dyy));
+                0.5 * (nn * e - 2.0 * m * f + l * g) / (e * g - f * f)
+            })
+            .collect()
+    }
+
+    /// The seed's comparison criterion: how far a surface's curvature is from the original's,
+    /// as the RMS of the difference of mean curvature over the surface.
+    fn curvature_error(original: &[f64], s: &Ups<Vector3<f64>>) -> f64 {
+        let h = mean_curvature(s);
+        (h.iter()
+            .zip(original)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum::<f64>()
+            / h.len() as f64)
+            .sqrt()
+    }
+
+    fn denoised(
+        noisy: &Ups<Vector3<f64>>,
+        rule: ThresholdRule,
+        mode: Shrink,
+    ) -> (Ups<Vector3<f64>>, Vec<LevelStats>) {
+        let mut dec = noisy.wavelet_transform(3).unwrap();
+        let stats = dec.threshold(|_, _| rule, mode);
+        (dec.reconstruct(), stats)
+    }
+
+    #[test]
+    fn noise_is_reproducible_and_of_the_given_size() {
+        let (smooth, noisy) = experiment();
+        let again = smooth.with_noise(0.02, NoiseKind::Uniform, 7);
+        assert_eq!(noisy, again);
+        let other = smooth.with_noise(0.02, NoiseKind::Uniform, 8);
+        assert_ne!(noisy, other);
+        let mut max: f64 = 0.0;
+        for s in smooth.grid().real_slots() {
+            for k in 0..3 {
+                max = max.max((noisy.blocks()[s][k] - smooth.blocks()[s][k]).amax());
+            }
+        }
+        assert!(max <= 0.02 && max > 0.018, "{max}");
+        let g = smooth.with_noise(0.01, NoiseKind::Gaussian, 3);
+        let (gb, sb) = (g.blocks(), smooth.blocks());
+        let d: Vec<f64> = smooth
+            .grid()
+            .real_slots()
+            .iter()
+            .flat_map(|&s| (0..3).map(move |k| (gb[s][k] - sb[s][k]).x))
+            .collect();
+        let sd = (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
+        assert!((sd - 0.01).abs() < 0.001, "{sd}");
+    }
+
+    #[test]
+    fn denoising_brings_the_curvature_back_and_soft_beats_hard_at_5_percent() {
+        // Seed 000, section 4: compare the curvature of the denoised surfaces with the
+        // original's. (Their point positions hardly change: see docs/ups.md.)
+        let (smooth, noisy) = experiment();
+        let h0 = mean_curvature(&smooth);
+        let e_noisy = curvature_error(&h0, &noisy);
+        let (hard5, hs) = denoised(&noisy, ThresholdRule::PercentOfMax(5.0), Shrink::Hard);
+        let (soft5, ss) = denoised(&noisy, ThresholdRule::PercentOfMax(5.0), Shrink::Soft);
+        let (soft10, _) = denoised(&noisy, ThresholdRule::PercentOfMax(10.0), Shrink::Soft);
+        let (e_hard5, e_soft5, e_soft10) = (
+            curvature_error(&h0, &hard5),
+            curvature_error(&h0, &soft5),
+            curvature_error(&h0, &soft10),
+        );
+        assert!(
+            e_soft5 < 0.9 * e_noisy,
+            "soft 5%: {e_soft5:e} vs noisy {e_noisy:e}"
+        );
+        assert!(
+            e_soft5 < 0.9 * e_hard5,
+            "soft 5% {e_soft5:e} should beat hard 5% {e_hard5:e}"
+        );
+        assert!(
+            e_soft10 < e_soft5,
+            "soft 10% is smoother: {e_soft10:e} vs {e_soft5:e}"
+        );
+        // The statistics: the same coefficients and thresholds (computed before shrinking),
+        // so the same counts zeroed; more coefficients die at the finer levels.
+        assert_eq!(hs.len(), 9);
+        for (h, s) in hs.iter().zip(&ss) {
+            assert_eq!(
+                (h.level, h.component, h.count, h.zeroed),
+                (s.level, s.component, s.count, s.zeroed)
+            );
+            assert!((h.threshold - 0.05 * h.max_abs).abs() < 1e-15);
+        }
+        // Automatic thresholds reduce the curvature error as well.
+        for rule in [
+            ThresholdRule::Universal,
+            ThresholdRule::Sure,
+            ThresholdRule::Gcv,
+        ] {
+            let (d, _) = denoised(&noisy, rule, Shrink::Soft);
+            let e = curvature_error(&h0, &d);
+            assert!(
+                e < 0.5 * e_noisy,
+                "{}: {e:e} vs noisy {e_noisy:e}",
+                rule.name()
+            );
+        }
+    }
+
+    #[test]
+    fn threshold_rules_on_known_data() {
+        assert_eq!(shrink(0.3, 0.5, Shrink::Hard), 0.0);
+        assert_eq!(shrink(-0.7, 0.5, Shrink::Hard), -0.7);
+        assert!((shrink(-0.7, 0.5, Shrink::Soft) + 0.2).abs() < 1e-15);
+        // Pure Gaussian noise of σ = 1: the estimate is close, universal kills almost all.
+        let mut r = rng(85);
+        let normal = rand_distr::Normal::new(0.0, 1.0).unwrap();
+        let d: Vec<f64> = (0..20000)
+            .map(|_| rand_distr::Distribution::sample(&normal, &mut r))
+            .collect();
+        assert!((noise_sigma(&d) - 1.0).abs() < 0.03);
+        let t = ThresholdRule::Universal.threshold(&d);
+        assert!(d.iter().filter(|x| x.abs() >= t).count() < 10);
+        // Sparse signal plus noise: SURE and GCV keep the large ones.
+        let mut s = d.clone();
+        for k in 0..50 {
+            s[k] += 20.0;
+        }
+        for rule in [ThresholdRule::Sure, ThresholdRule::Gcv] {
+            let t = rule.threshold(&s);
+            assert!(t > 0.5 && t < 10.0, "{}: {t}", rule.name());
+        }
+        assert_eq!(
+            ThresholdRule::PercentOfMax(10.0).threshold(&[1.0, -4.0, 2.0]),
+            0.4
+        );
+    }
+}
+
+#[test]
+fn fan_update_weights_agree_with_the_grid_computation_and_tabulate_the_boundary_cases() {
+    for (name, g) in grids(4) {
+        let coarse = g.coarsened().unwrap();
+        let k = wavelet::update_weights(&g, &coarse);
+        for s in coarse.real_slots() {
+            let f = wavelet::fan_update_weights(&coarse.sectors(s));
+            for c in 0..3 {
+                assert!((f[c] - k[s][c]).abs() < 1e-15, "{name} slot {s}");
+            }
+        }
+    }
+    // The table for docs/ups.md: fans of m consecutive sectors starting at sector 0.
+    for m in 1..=6 {
+        let mut sec = [false; 6];
+        for k in 0..m {
+            sec[k] = true;
+        }
+        let k = wavelet::fan_update_weights(&sec);
+        eprintln!(
+            "| {m} | sectors 0–{} | {:.6} | {:.6} | {:.6} |",
+            m - 1,
+            k[0],
+            k[1],
+            k[2]
+        );
+    }
+}

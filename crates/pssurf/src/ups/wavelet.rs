@@ -253,3 +253,31 @@ impl<V: Vector + Default> Decomposition<V> {
             .sum()
     }
 }
+
+/// The update weights k_j of a coarse vertex whose surrounding sectors (see
+/// [`UpsGrid::sectors`]) are `sectors`: the closed form behind [`update_weights`] for one
+/// vertex, used to tabulate the boundary cases.
+///
+/// An edge leaving the vertex in direction d (a [`super::grid::NEIGHBORS`] index) takes the
+/// vertex as V_i of the rule (4.26)–(4.28) for d ∈ {0, 2, 4} (shift d/2) and as V_j for
+/// d ∈ {3, 5, 1} (shift ((d + 3) mod 6)/2); as V_i it contributes 3/4 to components σ(1) and
+/// σ(2), as V_j 1 to σ(0) and 1/4 to σ(1), σ(2). Then k_j = 1/(2(1 + S_j)).
+pub fn fan_update_weights(sectors: &[bool; 6]) -> [f64; 3] {
+    let mut s = [0.0f64; 3];
+    for d in 0..6 {
+        if !(sectors[d] || sectors[(d + 5) % 6]) {
+            continue; // no triangle beside this edge
+        }
+        if d % 2 == 0 {
+            let shift = d / 2;
+            s[(1 + shift) % 3] += 0.75;
+            s[(2 + shift) % 3] += 0.75;
+        } else {
+            let shift = ((d + 3) % 6) / 2;
+            s[shift % 3] += 1.0;
+            s[(1 + shift) % 3] += 0.25;
+            s[(2 + shift) % 3] += 0.25;
+        }
+    }
+    s.map(|x| 0.5 / (1.0 + x))
+}
