@@ -7,7 +7,9 @@ use nalgebra::{Point2, Vector3};
 use thiserror::Error;
 
 use crate::bezier::{BezierTriangle, Jet, RationalBezierTriangle};
+use crate::ps::net::Weighted;
 use crate::ps::{Nurps, PatchId, PsJet, PsSpline};
+use crate::ups::{Ups, UpsError, UpsGrid};
 
 /// A point of a surface with its first and second partial derivatives w.r.t. the parameters
 /// (u, v), and the polynomial piece it was computed on (for piecewise surfaces, whose second
@@ -323,5 +325,137 @@ impl ParametricSurface for PsSurface {
             PsSurface::Parametric(s) => s.jet_with(uv, cursor),
             PsSurface::Rational(s) => s.jet_with(uv, cursor),
         }
+    }
+}
+
+/// A uniform PS-spline of any kind, in its block-matrix form.
+#[derive(Clone, Debug, PartialEq)]
+pub enum UpsSurface {
+    /// A functional UPS-spline z = s(x, y).
+    Functional(Ups<f64>),
+    /// A parametric UPS-spline surface.
+    Parametric(Ups<Vector3<f64>>),
+    /// A rational UPS-spline surface (NURPS on a uniform triangulation).
+    Rational(Ups<Weighted<Vector3<f64>>>),
+}
+
+impl UpsSurface {
+    /// The triangulation.
+    pub fn grid(&self) -> &UpsGrid {
+        match self {
+            UpsSurface::Functional(s) => s.grid(),
+            UpsSurface::Parametric(s) => s.grid(),
+            UpsSurface::Rational(s) => s.grid(),
+        }
+    }
+
+    /// The kind's name as in the file format.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            UpsSurface::Functional(_) => "functional",
+            UpsSurface::Parametric(_) => "parametric",
+            UpsSurface::Rational(_) => "nurps",
+        }
+    }
+
+    /// The same surface as a general PS surface.
+    pub fn to_general(&self) -> Result<PsSurface, UpsError> {
+        Ok(match self {
+            UpsSurface::Functional(s) => PsSurface::Functional(s.to_ps()?),
+            UpsSurface::Parametric(s) => PsSurface::Parametric(s.to_ps()?),
+            UpsSurface::Rational(s) => PsSurface::Rational(s.to_nurps()?),
+        })
+    }
+
+    /// `times` subdivision steps.
+    pub fn subdivide_times(&self, times: usize) -> UpsSurface {
+        match self {
+            UpsSurface::Functional(s) => UpsSurface::Functional(s.subdivide_times(times)),
+            UpsSurface::Parametric(s) => UpsSurface::Parametric(s.subdivide_times(times)),
+            UpsSurface::Rational(s) => UpsSurface::Rational(s.subdivide_times(times)),
+        }
+    }
+}
+
+/// What a surface file holds: a general PS surface, or a uniform one (whose general form is
+/// built when first needed, e.g. for evaluation).
+#[derive(Debug)]
+pub enum Surface {
+    /// A PS, parametric PS or NURPS surface on any triangulation.
+    General(PsSurface),
+    /// A UPS surface, with its general form once built.
+    Uniform(UpsSurface, std::sync::OnceLock<PsSurface>),
+}
+
+impl Clone for Surface {
+    fn clone(&self) -> Self {
+        match self {
+            Surface::General(s) => Surface::General(s.clone()),
+            Surface::Uniform(u, g) => {
+                let lock = std::sync::OnceLock::new();
+                if let Some(g) = g.get() {
+                    let _ = lock.set(g.clone());
+                }
+                Surface::Uniform(u.clone(), lock)
+            }
+        }
+    }
+}
+
+impl From<PsSurface> for Surface {
+    fn from(s: PsSurface) -> Self {
+        Surface::General(s)
+    }
+}
+
+impl From<UpsSurface> for Surface {
+    fn from(s: UpsSurface) -> Self {
+        Surface::Uniform(s, std::sync::OnceLock::new())
+    }
+}
+
+impl Surface {
+    /// The general form (for a uniform surface, built on first use).
+    pub fn general(&self) -> &PsSurface {
+        match self {
+            Surface::General(s) => s,
+            Surface::Uniform(u, g) => g.get_or_init(|| {
+                u.to_general()
+                    .expect("a validated uniform triangulation always has a PS basis with t(6)")
+            }),
+        }
+    }
+
+    /// The uniform form, if any.
+    pub fn uniform(&self) -> Option<&UpsSurface> {
+        match self {
+            Surface::Uniform(u, _) => Some(u),
+            Surface::General(_) => None,
+        }
+    }
+
+    /// "functional", "parametric" or "nurps".
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Surface::General(s) => s.kind_name(),
+            Surface::Uniform(u, _) => u.kind_name(),
+        }
+    }
+
+    /// True for a functional surface (evaluation points may be given as x, y).
+    pub fn is_functional(&self) -> bool {
+        self.kind_name() == "functional"
+    }
+}
+
+impl ParametricSurface for Surface {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        self.general().domain_bounds()
+    }
+    fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
+        self.general().cursor_near(uv)
+    }
+    fn jet_with(&self, uv: Point2<f64>, cursor: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        self.general().jet_with(uv, cursor)
     }
 }

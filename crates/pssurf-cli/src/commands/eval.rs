@@ -31,7 +31,7 @@ pub struct EvalArgs {
 /// Runs `pssurf eval`.
 pub fn run(args: &EvalArgs) -> Result<()> {
     let surface = pssurf::io::load(&args.surface)?;
-    let functional = matches!(surface, pssurf::surface::PsSurface::Functional(_));
+    let functional = surface.is_functional();
     let pts = args.points.resolve(surface.domain_bounds(), functional)?;
     let mut columns: Vec<String> = ["u", "v", "x", "y", "z"].map(String::from).to_vec();
     if args.derivatives {

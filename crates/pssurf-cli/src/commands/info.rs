@@ -59,7 +59,8 @@ struct Info {
 
 /// Runs `pssurf info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
-    let s = pssurf::io::load(&args.surface)?;
+    let file = pssurf::io::load(&args.surface)?;
+    let s = file.general();
     let basis = s.basis();
     let t = basis.triangulation();
     let n = t.vertex_count();

@@ -8,9 +8,11 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::geometry::Triangle2;
+use crate::ps::net::Weighted;
 use crate::ps::{Nurps, PsBasis, PsError, PsRefinement, PsSpline, PsTriangleChoice, SplitRule};
-use crate::surface::PsSurface;
+use crate::surface::{PsSurface, Surface, UpsSurface};
 use crate::triangulation::{Triangulation, TriangulationError};
+use crate::ups::{Lattice, LatticePolygon, Ups, UpsGrid, fixed_ps_triangle};
 
 /// The format version this build writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
@@ -93,6 +95,16 @@ struct Domain {
     split_points: Option<Vec<[f64; 2]>>,
 }
 
+/// The uniform structure of a UPS surface: its lattice and polygon. The vertices must be the
+/// polygon's lattice points in block-matrix order (by rows of constant j, then i).
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Uniform {
+    base: f64,
+    origin: [f64; 2],
+    polygon: Vec<[i64; 2]>,
+}
+
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileV1 {
@@ -108,6 +120,8 @@ struct FileV1 {
     control_points: Option<Vec<[[f64; 3]; 3]>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     weights: Option<Vec<[f64; 3]>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    uniform: Option<Uniform>,
 }
 
 fn syntax(e: serde_json::Error) -> FormatError {
@@ -135,7 +149,7 @@ fn invalid(at: impl Into<String>, message: impl std::fmt::Display) -> FormatErro
 
 /// Reads a surface from the text of a file, validating everything; the error names the
 /// first problem and where it is.
-pub fn from_json_str(text: &str) -> Result<PsSurface, FormatError> {
+pub fn from_json_str(text: &str) -> Result<Surface, FormatError> {
     let header: Header = serde_json::from_str(text).map_err(syntax)?;
     if header.format.as_deref() != Some(FORMAT_NAME) {
         return Err(FormatError::NotPssurf);
@@ -146,7 +160,10 @@ pub fn from_json_str(text: &str) -> Result<PsSurface, FormatError> {
         None => return Err(invalid("version", "missing field `version`")),
     }
     let file: FileV1 = serde_json::from_str(text).map_err(syntax)?;
-    build(file)
+    if file.uniform.is_some() {
+        return build_uniform(file).map(Surface::from);
+    }
+    build(file).map(Surface::from)
 }
 
 fn build(file: FileV1) -> Result<PsSurface, FormatError> {
@@ -257,6 +274,149 @@ fn build(file: FileV1) -> Result<PsSurface, FormatError> {
     Ok(surface)
 }
 
+/// Rebuilds a UPS surface, checking that the general description is exactly its uniform
+/// triangulation with the fixed PS-triangles.
+fn build_uniform(file: FileV1) -> Result<UpsSurface, FormatError> {
+    let u = file.uniform.as_ref().expect("checked by the caller");
+    if !(u.base > 0.0 && u.base.is_finite() && u.origin.iter().all(|x| x.is_finite())) {
+        return Err(invalid(
+            "uniform.base",
+            "the base must be a positive finite number and the origin finite",
+        ));
+    }
+    let polygon =
+        LatticePolygon::new(u.polygon.clone()).map_err(|e| invalid("uniform.polygon", e))?;
+    let lattice = Lattice {
+        base: u.base,
+        origin: Point2::new(u.origin[0], u.origin[1]),
+    };
+    let grid = UpsGrid::new(lattice, polygon).map_err(|e| invalid("uniform", e))?;
+    let slots = grid.real_slots();
+    let n = slots.len();
+    check_count("domain.vertices", file.domain.vertices.len(), n)?;
+    let tol = 1e-9 * u.base;
+    for (k, (&s, v)) in slots.iter().zip(&file.domain.vertices).enumerate() {
+        let lp = grid.lattice_point(s);
+        let p = lattice.point(lp);
+        if !((p.x - v[0]).abs() <= tol && (p.y - v[1]).abs() <= tol) {
+            return Err(invalid(
+                format!("domain.vertices[{k}]"),
+                format!(
+                    "expected the lattice point ({}, {}) at ({}, {}) of the uniform triangulation",
+                    lp[0], lp[1], p.x, p.y
+                ),
+            ));
+        }
+    }
+    let mut index = vec![usize::MAX; grid.slots()];
+    for (k, &s) in slots.iter().enumerate() {
+        index[s] = k;
+    }
+    let key = |t: [usize; 3]| {
+        let mut t = t;
+        t.sort_unstable();
+        t
+    };
+    let mut expected: Vec<[usize; 3]> = grid
+        .triangle_slots()
+        .into_iter()
+        .map(|t| key(t.map(|s| index[s])))
+        .collect();
+    let mut given: Vec<[usize; 3]> = file.domain.triangles.iter().map(|&t| key(t)).collect();
+    expected.sort_unstable();
+    given.sort_unstable();
+    if expected != given {
+        return Err(invalid(
+            "domain.triangles",
+            "not the triangles of the uniform triangulation of the polygon",
+        ));
+    }
+    if file.domain.split_points.is_some()
+        || file
+            .domain
+            .split
+            .as_deref()
+            .is_some_and(|s| s != "incenter")
+    {
+        return Err(invalid(
+            "domain.split",
+            "uniform surfaces use the incentre split (the angle bisectors, Definition 4.3)",
+        ));
+    }
+    if let Some(list) = &file.ps_triangles {
+        check_count("ps_triangles", list.len(), n)?;
+        for (k, (t, &s)) in list.iter().zip(&slots).enumerate() {
+            let q = fixed_ps_triangle(&lattice, lattice.point(grid.lattice_point(s)));
+            let same = (0..3)
+                .all(|m| (q.v[m].x - t[m][0]).abs() <= tol && (q.v[m].y - t[m][1]).abs() <= tol);
+            if !same {
+                return Err(invalid(
+                    format!("ps_triangles[{k}]"),
+                    "uniform surfaces use the fixed PS-triangles t(6) (Property 4.1)",
+                ));
+            }
+        }
+    }
+    let finite = |field: &str, vals: &mut dyn Iterator<Item = (usize, usize, bool)>| {
+        for (i, j, ok) in vals {
+            if !ok {
+                return Err(invalid(format!("{field}[{i}][{j}]"), "not a finite number"));
+            }
+        }
+        Ok(())
+    };
+    match file.kind {
+        Kind::Functional => {
+            let c = file
+                .control
+                .ok_or_else(|| invalid("control", "missing field `control`"))?;
+            check_count("control", c.len(), n)?;
+            finite(
+                "control",
+                &mut c
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(i, t)| (0..3).map(move |j| (i, j, t[j].is_finite()))),
+            )?;
+            Ok(UpsSurface::Functional(
+                Ups::from_vertices(grid, c).map_err(|e| invalid("control", e))?,
+            ))
+        }
+        Kind::Parametric | Kind::Nurps => {
+            let c = file
+                .control_points
+                .ok_or_else(|| invalid("control_points", "missing field `control_points`"))?;
+            check_count("control_points", c.len(), n)?;
+            finite(
+                "control_points",
+                &mut c.iter().enumerate().flat_map(|(i, t)| {
+                    (0..3).map(move |j| (i, j, t[j].iter().all(|x| x.is_finite())))
+                }),
+            )?;
+            let pts: Vec<[Vector3<f64>; 3]> = c
+                .iter()
+                .map(|t| t.map(|p| Vector3::new(p[0], p[1], p[2])))
+                .collect();
+            if file.kind == Kind::Parametric {
+                Ok(UpsSurface::Parametric(
+                    Ups::from_vertices(grid, pts).map_err(|e| invalid("control_points", e))?,
+                ))
+            } else {
+                let w = file
+                    .weights
+                    .ok_or_else(|| invalid("weights", "missing field `weights`"))?;
+                check_count("weights", w.len(), n)?;
+                Ok(UpsSurface::Rational(Ups::rational(grid, pts, w).map_err(
+                    |e| match e {
+                        crate::ups::UpsError::Ps(pe) => ps_error(pe),
+                        e => invalid("weights", e),
+                    },
+                )?))
+            }
+        }
+    }
+}
+
 fn check_count(field: &str, found: usize, n: usize) -> Result<(), FormatError> {
     if found == n {
         Ok(())
@@ -302,8 +462,23 @@ fn ps_error(e: PsError) -> FormatError {
 }
 
 /// The file text of a surface. The PS-triangles are always written explicitly, so that a
-/// file means the same surface whatever version of the optimiser reads it.
-pub fn to_json_string(surface: &PsSurface) -> String {
+/// file means the same surface whatever version of the optimiser reads it; a uniform
+/// surface also gets its `uniform` section.
+pub fn to_json_string(surface: &Surface) -> String {
+    let file = match surface {
+        Surface::General(s) => general_file(s),
+        Surface::Uniform(u, _) => uniform_file(u),
+    };
+    let mut text = serde_json::to_string(&file).expect("finite numbers serialise");
+    text.push('\n');
+    text
+}
+
+fn points3(c: &[[Vector3<f64>; 3]]) -> Vec<[[f64; 3]; 3]> {
+    c.iter().map(|t| t.map(|p| [p.x, p.y, p.z])).collect()
+}
+
+fn general_file(surface: &PsSurface) -> FileV1 {
     let basis = surface.basis();
     let tri = basis.triangulation();
     let refinement = basis.refinement();
@@ -345,27 +520,84 @@ pub fn to_json_string(surface: &PsSurface) -> String {
         control: None,
         control_points: None,
         weights: None,
+        uniform: None,
     };
-    let pts = |c: &[[Vector3<f64>; 3]]| c.iter().map(|t| t.map(|p| [p.x, p.y, p.z])).collect();
     match surface {
         PsSurface::Functional(s) => file.control = Some(s.coefficients().to_vec()),
         PsSurface::Parametric(s) => {
             file.kind = Kind::Parametric;
-            file.control_points = Some(pts(s.coefficients()));
+            file.control_points = Some(points3(s.coefficients()));
         }
         PsSurface::Rational(s) => {
             file.kind = Kind::Nurps;
-            file.control_points = Some(pts(s.points()));
+            file.control_points = Some(points3(s.points()));
             file.weights = Some(s.weights().to_vec());
         }
     }
-    let mut text = serde_json::to_string(&file).expect("finite numbers serialise");
-    text.push('\n');
-    text
+    file
+}
+
+fn uniform_file(u: &UpsSurface) -> FileV1 {
+    let grid = u.grid();
+    let lattice = *grid.lattice();
+    let slots = grid.real_slots();
+    let mut index = vec![usize::MAX; grid.slots()];
+    for (k, &s) in slots.iter().enumerate() {
+        index[s] = k;
+    }
+    let points: Vec<Point2<f64>> = slots
+        .iter()
+        .map(|&s| lattice.point(grid.lattice_point(s)))
+        .collect();
+    let mut file = FileV1 {
+        format: FORMAT_NAME.to_string(),
+        version: FORMAT_VERSION as u64,
+        kind: Kind::Functional,
+        domain: Domain {
+            vertices: points.iter().map(|p| [p.x, p.y]).collect(),
+            triangles: grid
+                .triangle_slots()
+                .into_iter()
+                .map(|t| t.map(|s| index[s]))
+                .collect(),
+            split: Some("incenter".into()),
+            split_points: None,
+        },
+        ps_triangles: Some(
+            points
+                .iter()
+                .map(|&p| fixed_ps_triangle(&lattice, p).v.map(|q| [q.x, q.y]))
+                .collect(),
+        ),
+        control: None,
+        control_points: None,
+        weights: None,
+        uniform: Some(Uniform {
+            base: lattice.base,
+            origin: [lattice.origin.x, lattice.origin.y],
+            polygon: grid.polygon().vertices().to_vec(),
+        }),
+    };
+    match u {
+        UpsSurface::Functional(s) => file.control = Some(s.vertex_values()),
+        UpsSurface::Parametric(s) => {
+            file.kind = Kind::Parametric;
+            file.control_points = Some(points3(&s.vertex_values()));
+        }
+        UpsSurface::Rational(s) => {
+            let v: Vec<[Weighted<Vector3<f64>>; 3]> = s.vertex_values();
+            file.kind = Kind::Nurps;
+            file.control_points = Some(points3(
+                &v.iter().map(|t| t.map(|w| w.point)).collect::<Vec<_>>(),
+            ));
+            file.weights = Some(v.iter().map(|t| t.map(|w| w.weight)).collect());
+        }
+    }
+    file
 }
 
 /// Reads and validates a surface file.
-pub fn load(path: &Path) -> Result<PsSurface, FileError> {
+pub fn load(path: &Path) -> Result<Surface, FileError> {
     let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
         path: path.to_path_buf(),
         source,
@@ -376,8 +608,8 @@ pub fn load(path: &Path) -> Result<PsSurface, FileError> {
     })
 }
 
-/// Writes a surface file atomically (a failure leaves any previous file intact).
-pub fn save(surface: &PsSurface, path: &Path) -> Result<(), FileError> {
+/// Writes a surface file atomically and durably (a failure leaves any previous file intact).
+pub fn save(surface: &Surface, path: &Path) -> Result<(), FileError> {
     let text = to_json_string(surface);
     super::atomic_write_bytes(path, super::Durability::Durable, text.as_bytes()).map_err(|source| {
         FileError::Io {

@@ -6,11 +6,11 @@ use nalgebra::{Point2, Vector3};
 
 use super::*;
 use crate::ps::{Nurps, PsBasis, PsRefinement, PsSpline, PsTriangleChoice, SplitRule};
-use crate::surface::{ParametricSurface, PsSurface};
+use crate::surface::{ParametricSurface, PsSurface, Surface};
 use crate::test_util::meshes::structured;
 use crate::test_util::*;
 
-fn sample_surfaces() -> Vec<PsSurface> {
+fn sample_surfaces() -> Vec<Surface> {
     let mut r = rng(60);
     let t = structured(&mut r, 3);
     let n = t.vertex_count();
@@ -30,9 +30,9 @@ fn sample_surfaces() -> Vec<PsSurface> {
         .map(|_| std::array::from_fn(|_| uniform(&mut r, 0.1, 10.0)))
         .collect();
     vec![
-        PsSurface::Functional(PsSpline::new(b1, c).unwrap()),
-        PsSurface::Parametric(PsSpline::new(b2, p.clone()).unwrap()),
-        PsSurface::Rational(Nurps::new(b3, p, w).unwrap()),
+        PsSurface::Functional(PsSpline::new(b1, c).unwrap()).into(),
+        PsSurface::Parametric(PsSpline::new(b2, p.clone()).unwrap()).into(),
+        PsSurface::Rational(Nurps::new(b3, p, w).unwrap()).into(),
     ]
 }
 
@@ -44,15 +44,16 @@ fn every_kind_round_trips_exactly() {
         save(&s, &path).unwrap();
         let back = load(&path).unwrap();
         assert_eq!(back.kind_name(), s.kind_name());
-        assert_eq!(back.basis().triangulation(), s.basis().triangulation());
-        assert_eq!(back.basis().ps_triangles(), s.basis().ps_triangles());
+        let (bg, sg) = (back.general(), s.general());
+        assert_eq!(bg.basis().triangulation(), sg.basis().triangulation());
+        assert_eq!(bg.basis().ps_triangles(), sg.basis().ps_triangles());
         assert_eq!(
-            back.basis().refinement().split_points(),
-            s.basis().refinement().split_points()
+            bg.basis().refinement().split_points(),
+            sg.basis().refinement().split_points()
         );
-        assert_eq!(back.control_points(), s.control_points());
+        assert_eq!(bg.control_points(), sg.control_points());
         let mut r = rng(61);
-        let t = s.basis().triangulation();
+        let t = sg.basis().triangulation();
         for _ in 0..20 {
             let p = t.triangle_geometry(0).point(random_bary(&mut r));
             assert_eq!(back.jet(p).unwrap(), s.jet(p).unwrap());
@@ -191,7 +192,7 @@ mod fuzz {
         let b = Arc::new(PsBasis::optimal(t).unwrap());
         let n = b.triangulation().vertex_count();
         let s = PsSurface::Functional(PsSpline::new(b, vec![[0.5, 0.25, -1.0]; n]).unwrap());
-        to_json_string(&s)
+        to_json_string(&s.into())
     }
 
     proptest! {
@@ -240,5 +241,108 @@ mod fuzz {
                 prop_assert!((s.eval(p).unwrap() - 1.0).abs() < 1e-12);
             }
         }
+    }
+}
+
+mod uniform {
+    //! UPS files: round trips that keep the uniform structure, and inconsistent files.
+
+    use super::*;
+    use crate::surface::UpsSurface;
+    use crate::ups::{Lattice, LatticePolygon, Ups, UpsGrid};
+
+    fn surfaces() -> Vec<Surface> {
+        let lattice = Lattice {
+            base: 0.5,
+            origin: Point2::new(1.0, -2.0),
+        };
+        let g = UpsGrid::new(lattice, LatticePolygon::standard(5, 2).unwrap()).unwrap();
+        let f = Ups::hermite(g.clone(), |p| crate::ps::Hermite {
+            value: p.x * p.y,
+            dx: p.y,
+            dy: p.x,
+        });
+        let p = Ups::hermite(g.clone(), |p| crate::ps::Hermite {
+            value: Vector3::new(p.x, p.y, p.x * p.y),
+            dx: Vector3::new(1.0, 0.0, p.y),
+            dy: Vector3::new(0.0, 1.0, p.x),
+        });
+        let pts = p.vertex_values();
+        let w = vec![[1.0, 2.0, 0.5]; pts.len()];
+        let r = Ups::rational(g, pts, w).unwrap();
+        vec![
+            UpsSurface::Functional(f).into(),
+            UpsSurface::Parametric(p).into(),
+            UpsSurface::Rational(r).into(),
+        ]
+    }
+
+    #[test]
+    fn uniform_surfaces_round_trip_and_stay_uniform() {
+        for s in surfaces() {
+            let text = to_json_string(&s);
+            let back = from_json_str(&text).unwrap();
+            assert_eq!(back.uniform(), s.uniform(), "{}", s.kind_name());
+            assert_eq!(to_json_string(&back), text);
+            // Any reader of the general format sees the same surface.
+            let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+            v.as_object_mut().unwrap().remove("uniform");
+            let general = from_json_str(&v.to_string()).unwrap();
+            assert!(general.uniform().is_none());
+            let p = Point2::new(1.9, -1.6);
+            let (a, b) = (general.jet(p).unwrap().jet, back.jet(p).unwrap().jet);
+            assert!(a.max_diff(&b) < 1e-12, "{}", s.kind_name());
+        }
+    }
+
+    #[test]
+    fn inconsistent_uniform_files_are_rejected() {
+        let text = to_json_string(&surfaces()[1]);
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let with = |f: &dyn Fn(&mut serde_json::Value)| {
+            let mut v = v.clone();
+            f(&mut v);
+            from_json_str(&v.to_string()).expect_err("should be rejected")
+        };
+        let at = |e: &FormatError| match e {
+            FormatError::Invalid { at, .. } => at.clone(),
+            other => panic!("{other}"),
+        };
+        assert_eq!(
+            at(&with(
+                &|v| v["uniform"]["polygon"][1] = serde_json::json!([3, 1])
+            )),
+            "uniform.polygon"
+        );
+        assert_eq!(
+            at(&with(&|v| v["uniform"]["base"] = serde_json::json!(0.25))),
+            "domain.vertices[0]"
+        );
+        assert_eq!(
+            at(&with(
+                &|v| v["domain"]["vertices"][3][0] = serde_json::json!(7.0)
+            )),
+            "domain.vertices[3]"
+        );
+        assert_eq!(
+            at(&with(
+                &|v| v["ps_triangles"][2][0][0] = serde_json::json!(9.0)
+            )),
+            "ps_triangles[2]"
+        );
+        assert_eq!(
+            at(&with(&|v| v["domain"]["split"] = "centroid".into())),
+            "domain.split"
+        );
+        assert_eq!(
+            at(&with(
+                &|v| v["domain"]["triangles"][0] = serde_json::json!([0, 1, 5])
+            )),
+            "domain.triangles"
+        );
+        assert_eq!(
+            at(&with(&|v| v["uniform"]["base"] = serde_json::json!(-1.0))),
+            "uniform.base"
+        );
     }
 }
