@@ -16,6 +16,8 @@
 pub(crate) mod test_util;
 
 pub mod bezier;
+#[cfg(feature = "expr")]
+pub mod expr;
 pub mod geometry;
 #[cfg(feature = "io")]
 pub mod io;
