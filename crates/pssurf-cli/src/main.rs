@@ -19,6 +19,10 @@ use clap::{Parser, Subcommand};
 ///   pssurf fit data.csv -o surf.json          # interpolate x,y,z (and optional zx,zy)
 ///   pssurf info surf.json                     # what the file holds, PS-triangle quality
 ///   pssurf eval surf.json --grid 200x200 -o grid.npy --derivatives
+///   pssurf new ups --sides 6 --size 4 --height "sin(x)*cos(y)" -o ups.json
+///   pssurf subdivide ups.json --times 3 -o fine.json
+///   pssurf noise fine.json --amplitude 0.01 --seed 1 -o noisy.json
+///   pssurf denoise noisy.json --levels 3 --threshold 5% -o clean.json
 #[derive(Parser, Debug)]
 #[command(name = "pssurf", version, about, long_about, max_term_width = 100)]
 struct Cli {
@@ -36,6 +40,17 @@ enum Command {
     Eval(commands::eval::EvalArgs),
     /// Show what a surface file holds: kind, counts, domain, PS-triangle quality, validity.
     Info(commands::info::InfoArgs),
+    /// Create a surface: `pssurf new ups` makes a uniform PS surface on a lattice polygon.
+    #[command(subcommand)]
+    New(commands::new::NewWhat),
+    /// Subdivide a UPS surface: the same surface on a finer triangulation.
+    Subdivide(commands::subdivide::SubdivideArgs),
+    /// Add reproducible noise to the control points (for denoising experiments).
+    Noise(commands::noise::NoiseArgs),
+    /// Remove noise from a UPS surface by wavelet thresholding; prints per-level statistics.
+    Denoise(commands::denoise::DenoiseArgs),
+    /// Show the UPS wavelet decomposition: per-level spectrum and histograms; optionally save it.
+    Wavelet(commands::wavelet::WaveletArgs),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +59,11 @@ fn main() -> ExitCode {
         Command::Fit(a) => commands::fit::run(a),
         Command::Eval(a) => commands::eval::run(a),
         Command::Info(a) => commands::info::run(a),
+        Command::New(a) => commands::new::run(a),
+        Command::Subdivide(a) => commands::subdivide::run(a),
+        Command::Noise(a) => commands::noise::run(a),
+        Command::Denoise(a) => commands::denoise::run(a),
+        Command::Wavelet(a) => commands::wavelet::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -289,3 +289,233 @@ fn the_example_in_docs_format_md_loads() {
     let info = ok(&["info", &s(&f)]);
     assert!(info.contains("functional"), "{info}");
 }
+
+#[test]
+fn ups_commands_end_to_end() {
+    let d = tmp();
+    let ups = d.path().join("ups.json");
+    ok(&[
+        "new",
+        "ups",
+        "--sides",
+        "6",
+        "--size",
+        "2",
+        "--height",
+        "sin(x)*cos(y) + 0.1*x*y",
+        "-o",
+        &s(&ups),
+    ]);
+    let info = ok(&["info", &s(&ups)]);
+    assert!(
+        info.contains("uniform (UPS)") && info.contains("parametric"),
+        "{info}"
+    );
+    // Subdivision does not change the surface.
+    let fine = d.path().join("fine.json");
+    ok(&["subdivide", &s(&ups), "--times", "2", "-o", &s(&fine)]);
+    let pts = write(d.path(), "pts.csv", "u,v\n2.5,1.0\n3.0,2.0\n4.0,1.5\n");
+    let a = ok(&["eval", &s(&ups), "--at", &s(&pts), "--derivatives"]);
+    let b = ok(&["eval", &s(&fine), "--at", &s(&pts), "--derivatives"]);
+    for (la, lb) in a.lines().skip(1).zip(b.lines().skip(1)) {
+        let va: Vec<f64> = la.split(',').map(|t| t.parse().unwrap()).collect();
+        let vb: Vec<f64> = lb.split(',').map(|t| t.parse().unwrap()).collect();
+        for (x, y) in va.iter().zip(&vb) {
+            assert!((x - y).abs() < 1e-12, "{la} vs {lb}");
+        }
+    }
+    // Noise is reproducible.
+    let (n1, n2, n3) = (
+        d.path().join("n1.json"),
+        d.path().join("n2.json"),
+        d.path().join("n3.json"),
+    );
+    ok(&[
+        "noise",
+        &s(&fine),
+        "--amplitude",
+        "0.01",
+        "--seed",
+        "3",
+        "-o",
+        &s(&n1),
+    ]);
+    ok(&[
+        "noise",
+        &s(&fine),
+        "--amplitude",
+        "0.01",
+        "--seed",
+        "3",
+        "-o",
+        &s(&n2),
+    ]);
+    ok(&[
+        "noise",
+        &s(&fine),
+        "--amplitude",
+        "0.01",
+        "--seed",
+        "4",
+        "--distribution",
+        "gaussian",
+        "-o",
+        &s(&n3),
+    ]);
+    assert_eq!(std::fs::read(&n1).unwrap(), std::fs::read(&n2).unwrap());
+    assert_ne!(std::fs::read(&n1).unwrap(), std::fs::read(&n3).unwrap());
+    // Denoising prints the per-level table and writes a valid UPS surface.
+    let clean = d.path().join("clean.json");
+    let table = ok(&[
+        "denoise",
+        &s(&n1),
+        "--levels",
+        "2",
+        "--threshold",
+        "5%",
+        "--mode",
+        "hard",
+        "-o",
+        &s(&clean),
+    ]);
+    assert!(
+        table.contains("level  coord")
+            && table.contains("hard thresholding, 5% of max at every level"),
+        "{table}"
+    );
+    assert_eq!(
+        table
+            .lines()
+            .filter(|l| l.trim_start().starts_with(['1', '2']))
+            .count(),
+        6,
+        "{table}"
+    );
+    assert!(ok(&["info", &s(&clean)]).contains("uniform (UPS)"));
+    for auto in ["universal", "sure", "gcv"] {
+        let t = ok(&[
+            "denoise",
+            &s(&n1),
+            "--levels",
+            "2",
+            "--auto",
+            auto,
+            "-o",
+            &s(&clean),
+        ]);
+        assert!(t.to_lowercase().contains(auto), "{t}");
+    }
+    ok(&[
+        "denoise",
+        &s(&n1),
+        "--levels",
+        "2",
+        "--per-level",
+        "10%,0.001",
+        "-o",
+        &s(&clean),
+    ]);
+    // The wavelet spectrum and the decomposition file.
+    let coeffs = d.path().join("coeffs.json");
+    let spec = ok(&["wavelet", &s(&n1), "--levels", "2", "-o", &s(&coeffs)]);
+    assert!(spec.contains("histograms"), "{spec}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&coeffs).unwrap()).unwrap();
+    assert_eq!(json["format"], "pssurf-wavelet");
+    assert_eq!(json["details"].as_array().unwrap().len(), 2);
+    assert!(json["coarse"]["uniform"].is_object());
+    // A user polygon (an L-shape) and a functional surface.
+    let l = d.path().join("l.json");
+    ok(&[
+        "new",
+        "ups",
+        "--polygon",
+        "0,0 4,0 4,2 2,2 2,4 0,4",
+        "--kind",
+        "functional",
+        "--height",
+        "x*y",
+        "-o",
+        &s(&l),
+    ]);
+    assert!(ok(&["info", &s(&l)]).contains("functional"));
+}
+
+#[test]
+fn ups_commands_reject_bad_input() {
+    let d = tmp();
+    let out = d.path().join("never.json");
+    let o = s(&out);
+    let general = d.path().join("g.json");
+    ok(&["fit", &example("saddle.csv"), "-o", &s(&general)]);
+    let e = fails(&["subdivide", &s(&general), "--times", "1", "-o", &o]);
+    assert!(e.contains("needs a uniform (UPS) surface"), "{e}");
+    let e = fails(&["new", "ups", "--polygon", "0,0 3,1 0,3", "-o", &o]);
+    assert!(e.contains("grid line"), "{e}");
+    let e = fails(&[
+        "new",
+        "ups",
+        "--sides",
+        "3",
+        "--size",
+        "2",
+        "--height",
+        "sqrt(x - 5)",
+        "-o",
+        &o,
+    ]);
+    assert!(e.contains("no finite value"), "{e}");
+    let e = fails(&[
+        "new", "ups", "--sides", "3", "--size", "2", "--height", "sin(", "-o", &o,
+    ]);
+    assert!(e.contains("cannot parse"), "{e}");
+    let ups = d.path().join("u.json");
+    ok(&["new", "ups", "--sides", "4", "--size", "3", "-o", &s(&ups)]);
+    let e = fails(&[
+        "denoise",
+        &s(&ups),
+        "--levels",
+        "2",
+        "--threshold",
+        "5%",
+        "-o",
+        &o,
+    ]);
+    assert!(e.contains("allows only 0 coarsening levels"), "{e}");
+    let e = fails(&[
+        "denoise",
+        &s(&ups),
+        "--levels",
+        "0",
+        "--threshold",
+        "five",
+        "-o",
+        &o,
+    ]);
+    assert!(e.contains("not a number"), "{e}");
+    let e = fails(&[
+        "denoise",
+        &s(&ups),
+        "--levels",
+        "1",
+        "--per-level",
+        "1%,2%",
+        "-o",
+        &o,
+    ]);
+    assert!(e.contains("2 thresholds for 1 levels"), "{e}");
+    let e = fails(&["subdivide", &s(&ups), "--times", "20", "-o", &o]);
+    assert!(e.contains("would make about"), "{e}");
+    let e = fails(&[
+        "noise",
+        &s(&ups),
+        "--amplitude",
+        "NaN",
+        "--seed",
+        "1",
+        "-o",
+        &o,
+    ]);
+    assert!(e.contains("finite"), "{e}");
+    assert!(!out.exists());
+}

@@ -186,10 +186,10 @@ pub enum ExprError {
         message: String,
     },
     /// A minus sign in front of a power, whose reading differs between conventions.
-    #[error(
-        "write `-({0})` or `(-{0})` instead of `-{0}` in `{1}`: a leading minus before a power is ambiguous"
-    )]
-    AmbiguousMinus(String, String),
+    ///
+    /// The fields are the operand, the power and the formula.
+    #[error("write `-({1})` or `(-{0}){rest}` instead of `-{1}` in `{2}`: a leading minus before a power is ambiguous", rest = &.1[.0.len()..])]
+    AmbiguousMinus(String, String, String),
     /// The formula uses a variable other than x and y.
     #[error("the formula may use only the variables x and y, not `{0}`")]
     UnknownVariable(String),
@@ -307,8 +307,11 @@ fn check_minus_before_power(formula: &str) -> Result<(), ExprError> {
                     e += 1;
                 }
                 let power: String = c[start..e].iter().collect::<String>().trim().to_string();
-                let _ = operand;
-                return Err(ExprError::AmbiguousMinus(power, formula.to_string()));
+                return Err(ExprError::AmbiguousMinus(
+                    operand,
+                    power,
+                    formula.to_string(),
+                ));
             }
         }
         prev = Some(ch);

@@ -22,6 +22,7 @@ pub mod geometry;
 #[cfg(feature = "io")]
 pub mod io;
 pub mod mesh;
+pub mod noise;
 pub mod ps;
 pub mod quadrature;
 pub mod scattered;

@@ -55,6 +55,15 @@ struct Info {
     control_min: [f64; 3],
     control_max: [f64; 3],
     weights: Option<Stats>,
+    uniform: Option<UniformInfo>,
+}
+
+#[derive(Serialize)]
+struct UniformInfo {
+    base: f64,
+    origin: [f64; 2],
+    polygon: Vec<[i64; 2]>,
+    wavelet_levels_available: u32,
 }
 
 /// Runs `pssurf info`.
@@ -102,6 +111,15 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             PsSurface::Rational(r) => Some(stats(r.weights().iter().flatten().copied().collect())),
             _ => None,
         },
+        uniform: file.uniform().map(|u| {
+            let g = u.grid();
+            UniformInfo {
+                base: g.lattice().base,
+                origin: [g.lattice().origin.x, g.lattice().origin.y],
+                polygon: g.polygon().vertices().to_vec(),
+                wavelet_levels_available: g.coarsening_levels(),
+            }
+        }),
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&info)?);
@@ -142,6 +160,24 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     );
     if let Some(w) = &info.weights {
         println!("weights              {}", st(w));
+    }
+    if let Some(u) = &info.uniform {
+        let corners: Vec<String> = u
+            .polygon
+            .iter()
+            .map(|p| format!("{},{}", p[0], p[1]))
+            .collect();
+        println!(
+            "uniform (UPS)        base {}, origin ({}, {}), lattice polygon {}",
+            u.base,
+            u.origin[0],
+            u.origin[1],
+            corners.join(" ")
+        );
+        println!(
+            "                     up to {} wavelet levels",
+            u.wavelet_levels_available.min(62)
+        );
     }
     Ok(())
 }

@@ -5,7 +5,6 @@
 pub mod display;
 pub mod grid;
 pub mod lattice;
-pub mod noise;
 pub mod spline;
 pub mod subdivision;
 pub mod threshold;

@@ -610,7 +610,7 @@ fn interior_wavelets_have_zero_integral() {
 
 mod denoise {
     use super::*;
-    use crate::ups::noise::NoiseKind;
+    use crate::noise::NoiseKind;
     use crate::ups::threshold::*;
 
     /// The seed's experiment: a smooth surface, subdivided three times, noise added.

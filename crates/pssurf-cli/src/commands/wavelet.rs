@@ -1,0 +1,117 @@
+//! `pssurf wavelet`: the UPS wavelet decomposition and its spectrum.
+
+use std::path::PathBuf;
+
+use anyhow::{Result, bail};
+use pssurf::surface::{Surface, UpsSurface};
+use pssurf::ups::wavelet::Decomposition;
+use pssurf::vector::Vector;
+use serde_json::json;
+
+use super::denoise::stats_table;
+use super::uniform;
+
+/// Arguments of `pssurf wavelet`.
+#[derive(clap::Args, Debug)]
+pub struct WaveletArgs {
+    /// A UPS surface file.
+    #[arg(value_name = "SURF.json")]
+    pub surface: PathBuf,
+    /// The number of levels F.
+    #[arg(long, value_name = "F")]
+    pub levels: u32,
+    /// Write the decomposition (the coarse surface and every detail triple with its lattice
+    /// coordinates) as JSON.
+    #[arg(short, long, value_name = "COEFFS.json")]
+    pub output: Option<PathBuf>,
+}
+
+/// Runs `pssurf wavelet`.
+pub fn run(args: &WaveletArgs) -> Result<()> {
+    let file = pssurf::io::load(&args.surface)?;
+    let u = uniform::require(&file, &args.surface, "wavelet")?;
+    let names = uniform::coordinate_names(u);
+    let json = match u {
+        UpsSurface::Functional(s) => report(&s.wavelet_transform(args.levels)?, names, |c| {
+            UpsSurface::Functional(c)
+        }),
+        UpsSurface::Parametric(s) => report(&s.wavelet_transform(args.levels)?, names, |c| {
+            UpsSurface::Parametric(c)
+        }),
+        UpsSurface::Rational(_) => {
+            bail!("wavelets are defined for polynomial UPS surfaces; this one is rational")
+        }
+    };
+    if let Some(path) = &args.output {
+        let text = serde_json::to_string(&json)? + "\n";
+        pssurf::io::atomic_write_bytes(path, pssurf::io::Durability::Atomic, text.as_bytes())?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Prints the spectrum and histograms; returns the decomposition as JSON.
+fn report<V: Vector + Default>(
+    dec: &Decomposition<V>,
+    names: &[&str],
+    wrap: impl Fn(pssurf::ups::Ups<V>) -> UpsSurface,
+) -> serde_json::Value {
+    let spectrum = dec.spectrum();
+    println!(
+        "UPS wavelet spectrum, {} levels (level 1 is the coarsest)",
+        dec.levels.len()
+    );
+    println!("{}", stats_table(&spectrum, names, false));
+    println!();
+    println!("histograms of |d| / max |d| per level and coordinate (10 bins):");
+    for s in &spectrum {
+        let d = dec.coefficients(s.level - 1, s.component);
+        let mut bins = [0usize; 10];
+        for x in &d {
+            let r = if s.max_abs > 0.0 {
+                x.abs() / s.max_abs
+            } else {
+                0.0
+            };
+            bins[((r * 10.0) as usize).min(9)] += 1;
+        }
+        let top = *bins.iter().max().unwrap_or(&1).max(&1);
+        let bars: Vec<String> = bins
+            .iter()
+            .map(|&b| format!("{:<8}", "#".repeat((b * 8).div_ceil(top))))
+            .collect();
+        println!(
+            "level {} {:>2}  |{}|",
+            s.level,
+            names.get(s.component).copied().unwrap_or("?"),
+            bars.join("|")
+        );
+    }
+    let coarse_text = pssurf::io::to_json_string(&Surface::from(wrap(dec.coarse.clone())));
+    let coarse: serde_json::Value = serde_json::from_str(&coarse_text).expect("our own JSON");
+    let details: Vec<serde_json::Value> = dec
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(k, l)| {
+            let coeffs: Vec<serde_json::Value> = l
+                .detail_slots()
+                .map(|s| {
+                    let d: Vec<Vec<f64>> = l.details[s]
+                        .iter()
+                        .map(|v| (0..V::DIM).map(|i| v.coord(i)).collect())
+                        .collect();
+                    json!({ "ij": l.grid.lattice_point(s), "d": d })
+                })
+                .collect();
+            json!({ "level": k + 1, "base": l.grid.lattice().base, "coefficients": coeffs })
+        })
+        .collect();
+    json!({
+        "format": "pssurf-wavelet",
+        "version": 1,
+        "levels": dec.levels.len(),
+        "coarse": coarse,
+        "details": details,
+    })
+}
