@@ -81,26 +81,14 @@ pub(crate) fn scale<V: Vector>(c: [V; 3]) -> [V; 3] {
     [p1, p2, p3]
 }
 
-/// The update weights k_{m,j} for every slot of the coarse grid (see the module docs).
-pub fn update_weights(fine: &UpsGrid, coarse: &UpsGrid) -> Vec<[f64; 3]> {
-    let mut s = vec![[0.0f64; 3]; coarse.slots()];
-    for f in 0..fine.slots() {
-        let (i, j) = fine.ij(f);
-        if !fine.is_real(f) || (i % 2 == 0 && j % 2 == 0) {
-            continue;
-        }
-        let (a, b, shift) = edge_of_new_vertex(i, j);
-        let (a, b) = (coarse.slot(a.0, a.1), coarse.slot(b.0, b.1));
-        let sg = |k: usize| (k + shift) % 3;
-        // Column sums of (4.26)–(4.28): c_i,σ(1), c_i,σ(2): 3/4 each; c_j,σ(0): 1;
-        // c_j,σ(1), c_j,σ(2): 1/4 each.
-        s[a][sg(1)] += 0.75;
-        s[a][sg(2)] += 0.75;
-        s[b][sg(0)] += 1.0;
-        s[b][sg(1)] += 0.25;
-        s[b][sg(2)] += 0.25;
-    }
-    s.iter().map(|t| t.map(|x| 0.5 / (1.0 + x))).collect()
+/// The update weights k_{m,j} for every slot of the coarse grid (see the module docs),
+/// from each vertex's fan of triangles ([`fan_update_weights`]).
+pub fn update_weights(_fine: &UpsGrid, coarse: &UpsGrid) -> Vec<[f64; 3]> {
+    (0..coarse.slots())
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|s| if coarse.is_real(s) { fan_update_weights(&coarse.sectors(s)) } else { [0.0; 3] })
+        .collect()
 }
 
 impl<V: Vector + Default> Ups<V> {
@@ -212,27 +200,35 @@ impl<V: Vector + Default> Ups<V> {
 }
 
 /// `low[m][j] += sign · k[m][j] · d[l][j]` for every detail slot l and both coarse slots m it
-/// was predicted from.
-fn apply_update<V: Vector>(
-    fine: &UpsGrid,
-    coarse: &UpsGrid,
-    details: &[[V; 3]],
-    k: &[[f64; 3]],
-    low: &mut [[V; 3]],
-    sign: f64,
-) {
-    for f in 0..fine.slots() {
-        let (i, j) = fine.ij(f);
-        if !fine.is_real(f) || (i % 2 == 0 && j % 2 == 0) {
-            continue;
-        }
-        let (a, b, _) = edge_of_new_vertex(i, j);
-        for m in [coarse.slot(a.0, a.1), coarse.slot(b.0, b.1)] {
-            for c in 0..3 {
-                low[m][c] += details[f][c] * (sign * k[m][c]);
+/// was predicted from — gathered per coarse slot: the details that update coarse vertex
+/// (i, j) sit at the midpoints (2i, 2j) + d of its six edges. Parallel over rows.
+fn apply_update<V: Vector>(fine: &UpsGrid, coarse: &UpsGrid, details: &[[V; 3]], k: &[[f64; 3]], low: &mut [[V; 3]], sign: f64) {
+    let [c0, _] = coarse.dims();
+    let [f0, f1] = fine.dims();
+    low.par_chunks_mut(c0).enumerate().for_each(|(j, row)| {
+        for (i, c) in row.iter_mut().enumerate() {
+            let m = coarse.slot(i, j);
+            if !coarse.is_real(m) {
+                continue;
+            }
+            let mut sum = [V::zero(); 3];
+            for d in super::grid::NEIGHBORS {
+                let (a, b) = (2 * i as i64 + d[0], 2 * j as i64 + d[1]);
+                if a < 0 || b < 0 || a as usize >= f0 || b as usize >= f1 {
+                    continue;
+                }
+                let f = fine.slot(a as usize, b as usize);
+                if fine.is_real(f) {
+                    for q in 0..3 {
+                        sum[q] += details[f][q];
+                    }
+                }
+            }
+            for q in 0..3 {
+                c[q] += sum[q] * (sign * k[m][q]);
             }
         }
-    }
+    });
 }
 
 impl<V: Vector + Default> Decomposition<V> {
