@@ -9,6 +9,12 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+// mimalloc keeps freed memory for reuse; with glibc's allocator every large fresh buffer
+// (a subdivided surface, a million evaluated points) is page-faulted in again, which made
+// UPS subdivision 3× slower on large surfaces (docs/performance.md).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Powell–Sabin spline surfaces: fit scattered data, evaluate, inspect.
 ///
 /// A PS-spline is a C¹ piecewise quadratic on any triangulation, written in Dierckx's

@@ -1,7 +1,7 @@
 //! UPS-splines: subdivision, the wavelet transform (forward + inverse) and tessellation by
 //! subdivision, for growing surfaces.
 
-use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
+use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{Point2, Vector3};
 use pssurf::mesh::TriMesh;
 use pssurf::ps::Hermite;
@@ -14,7 +14,10 @@ use std::hint::black_box;
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn surface(sides: usize, n: i64) -> Ups<Vector3<f64>> {
-    let lattice = Lattice { base: 1.0 / n as f64, origin: Point2::origin() };
+    let lattice = Lattice {
+        base: 1.0 / n as f64,
+        origin: Point2::origin(),
+    };
     let g = UpsGrid::new(lattice, LatticePolygon::standard(sides, n).unwrap()).unwrap();
     Ups::hermite(g, |p| Hermite {
         value: Vector3::new(p.x, p.y, (3.0 * p.x).sin() * (2.0 * p.y).cos()),
@@ -30,9 +33,11 @@ fn ups(c: &mut Criterion) {
         let s = surface(6, n);
         let out_points = 3 * s.grid().refined().vertex_count() as u64;
         g.throughput(Throughput::Elements(out_points));
-        g.bench_with_input(BenchmarkId::new("one step, output control points", out_points), &s, |b, s| {
-            b.iter(|| black_box(s.subdivide()))
-        });
+        g.bench_with_input(
+            BenchmarkId::new("one step, output control points", out_points),
+            &s,
+            |b, s| b.iter(|| black_box(s.subdivide())),
+        );
     }
     g.finish();
 
@@ -42,12 +47,16 @@ fn ups(c: &mut Criterion) {
         let s = surface(6, n);
         let coeffs = 3 * s.grid().vertex_count() as u64;
         g.throughput(Throughput::Elements(coeffs));
-        g.bench_with_input(BenchmarkId::new("3 levels, control points", coeffs), &s, |b, s| {
-            b.iter(|| {
-                let d = s.wavelet_transform(3).unwrap();
-                black_box(d.reconstruct())
-            })
-        });
+        g.bench_with_input(
+            BenchmarkId::new("3 levels, control points", coeffs),
+            &s,
+            |b, s| {
+                b.iter(|| {
+                    let d = s.wavelet_transform(3).unwrap();
+                    black_box(d.reconstruct())
+                })
+            },
+        );
     }
     g.finish();
 
@@ -56,16 +65,19 @@ fn ups(c: &mut Criterion) {
     let s = surface(6, 13);
     let triangles = s.grid().triangle_count() as u64 * 4u64.pow(5);
     g.throughput(Throughput::Elements(triangles));
-    g.bench_function(BenchmarkId::new("level 5, triangles with normals", triangles), |b| {
-        b.iter_batched(
-            TriMesh::default,
-            |mut mesh| {
-                s.tessellate(5, &mut mesh);
-                black_box(mesh)
-            },
-            BatchSize::LargeInput,
-        )
-    });
+    g.bench_function(
+        BenchmarkId::new("level 5, triangles with normals", triangles),
+        |b| {
+            b.iter_batched(
+                TriMesh::default,
+                |mut mesh| {
+                    s.tessellate(5, &mut mesh);
+                    black_box(mesh)
+                },
+                BatchSize::LargeInput,
+            )
+        },
+    );
     g.finish();
 }
 

@@ -87,7 +87,13 @@ pub fn update_weights(_fine: &UpsGrid, coarse: &UpsGrid) -> Vec<[f64; 3]> {
     (0..coarse.slots())
         .into_par_iter()
         .with_min_len(4096)
-        .map(|s| if coarse.is_real(s) { fan_update_weights(&coarse.sectors(s)) } else { [0.0; 3] })
+        .map(|s| {
+            if coarse.is_real(s) {
+                fan_update_weights(&coarse.sectors(s))
+            } else {
+                [0.0; 3]
+            }
+        })
         .collect()
 }
 
@@ -202,7 +208,14 @@ impl<V: Vector + Default> Ups<V> {
 /// `low[m][j] += sign · k[m][j] · d[l][j]` for every detail slot l and both coarse slots m it
 /// was predicted from — gathered per coarse slot: the details that update coarse vertex
 /// (i, j) sit at the midpoints (2i, 2j) + d of its six edges. Parallel over rows.
-fn apply_update<V: Vector>(fine: &UpsGrid, coarse: &UpsGrid, details: &[[V; 3]], k: &[[f64; 3]], low: &mut [[V; 3]], sign: f64) {
+fn apply_update<V: Vector>(
+    fine: &UpsGrid,
+    coarse: &UpsGrid,
+    details: &[[V; 3]],
+    k: &[[f64; 3]],
+    low: &mut [[V; 3]],
+    sign: f64,
+) {
     let [c0, _] = coarse.dims();
     let [f0, f1] = fine.dims();
     low.par_chunks_mut(c0).enumerate().for_each(|(j, row)| {
