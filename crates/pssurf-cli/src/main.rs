@@ -1,5 +1,6 @@
 //! `pssurf`: design and interrogate Powell–Sabin spline surfaces from the command line.
 
+mod colors;
 mod commands;
 mod output;
 mod points;
@@ -57,6 +58,20 @@ enum Command {
     Denoise(commands::denoise::DenoiseArgs),
     /// Show the UPS wavelet decomposition: per-level spectrum and histograms; optionally save it.
     Wavelet(commands::wavelet::WaveletArgs),
+    /// Exact curvature (K, H, κ1, κ2, |κ1|+|κ2|, principal directions, piece) at points or
+    /// on a grid, to CSV or .npy.
+    Curvature(commands::curvature::CurvatureArgs),
+    /// Render a surface to PNG: shaded, a curvature plot with legend, zebra stripes or
+    /// isophotes, with optional overlays.
+    Plot(commands::plot::PlotArgs),
+    /// Draw the parameter domain as SVG: triangulation, PS refinement, PS-points and
+    /// PS-triangles, optionally coloured by curvature.
+    Domain(commands::domain::DomainArgs),
+    /// Fairness numbers: integrals of H², K, |K|, κ1² + κ2², thin-plate energy, and the
+    /// distribution of every curvature quantity.
+    Fairness(commands::fairness::FairnessArgs),
+    /// Export a triangle mesh with curvature fields: PLY, OBJ, STL, glTF binary, VTK.
+    Export(commands::export::ExportArgs),
 }
 
 fn main() -> ExitCode {
@@ -70,6 +85,11 @@ fn main() -> ExitCode {
         Command::Noise(a) => commands::noise::run(a),
         Command::Denoise(a) => commands::denoise::run(a),
         Command::Wavelet(a) => commands::wavelet::run(a),
+        Command::Curvature(a) => commands::curvature::run(a),
+        Command::Plot(a) => commands::plot::run(a),
+        Command::Domain(a) => commands::domain::run(a),
+        Command::Fairness(a) => commands::fairness::run(a),
+        Command::Export(a) => commands::export::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -19,6 +19,7 @@ pub mod bezier;
 #[cfg(feature = "expr")]
 pub mod expr;
 pub mod geometry;
+pub mod interrogate;
 #[cfg(feature = "io")]
 pub mod io;
 pub mod mesh;
@@ -40,10 +41,13 @@ pub mod prelude {
         BezierCurve, BezierTriangle, Jet, RationalBezierCurve, RationalBezierTriangle,
     };
     pub use crate::geometry::{Bary, Triangle2};
+    pub use crate::interrogate::{Curvature, CurvatureQuantity};
     pub use crate::ps::{
         Hermite, Nurps, PatchId, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule,
     };
-    pub use crate::surface::{Cursor, OutsideDomain, ParametricSurface, PsSurface, SurfaceJet};
+    pub use crate::surface::{
+        Cursor, OutsideDomain, ParametricSurface, PatchwiseSurface, PsSurface, Surface, SurfaceJet,
+    };
     pub use crate::triangulation::{Triangulation, TriangulationError};
     pub use crate::vector::Vector;
     pub use nalgebra::{Point2, Vector2, Vector3};

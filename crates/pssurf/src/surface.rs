@@ -7,6 +7,7 @@ use nalgebra::{Point2, Vector3};
 use thiserror::Error;
 
 use crate::bezier::{BezierTriangle, Jet, RationalBezierTriangle};
+use crate::geometry::{Bary, BaryMap, Triangle2};
 use crate::ps::net::Weighted;
 use crate::ps::{Nurps, PatchId, PsJet, PsSpline};
 use crate::ups::{Ups, UpsError, UpsGrid};
@@ -92,6 +93,36 @@ macro_rules! forward_surface {
 }
 
 forward_surface!(&S, Box<S>, Arc<S>);
+
+/// A surface made of smooth (polynomial or rational) pieces, each over a triangle of the
+/// parameter domain: the PS sub-triangles of Δ* for PS, UPS and NURPS surfaces, the patch
+/// itself for a Bézier triangle. Values and first derivatives are continuous across the
+/// pieces; second derivatives, and so curvature, may jump. Sampling piece by piece gives
+/// each piece its own values on shared edges, so plots show the jumps.
+pub trait PatchwiseSurface: ParametricSurface {
+    /// The number of pieces.
+    fn patch_count(&self) -> usize;
+
+    /// The parameter triangle of piece `k`.
+    fn patch_domain(&self, k: usize) -> Triangle2;
+
+    /// The jet of piece `k` (extended as a polynomial or rational function) at the parameter
+    /// `uv` with barycentric coordinates `bary` in `map`, the barycentric map of
+    /// `patch_domain(k)`.
+    fn patch_jet(&self, k: usize, uv: Point2<f64>, bary: Bary, map: &BaryMap) -> Jet<Vector3<f64>>;
+}
+
+impl<S: PatchwiseSurface + ?Sized> PatchwiseSurface for &S {
+    fn patch_count(&self) -> usize {
+        (**self).patch_count()
+    }
+    fn patch_domain(&self, k: usize) -> Triangle2 {
+        (**self).patch_domain(k)
+    }
+    fn patch_jet(&self, k: usize, uv: Point2<f64>, bary: Bary, map: &BaryMap) -> Jet<Vector3<f64>> {
+        (**self).patch_jet(k, uv, bary, map)
+    }
+}
 
 /// Jets at many parameter points, in parallel on all cores. Points are processed in
 /// consecutive chunks with one cursor each, so grids and curves cost short walks.
@@ -264,6 +295,32 @@ impl ParametricSurface for RationalBezierTriangle<Vector3<f64>> {
     }
 }
 
+impl PatchwiseSurface for BezierTriangle<Vector3<f64>> {
+    fn patch_count(&self) -> usize {
+        1
+    }
+    fn patch_domain(&self, _: usize) -> Triangle2 {
+        *self.domain()
+    }
+    fn patch_jet(&self, _: usize, uv: Point2<f64>, _: Bary, _: &BaryMap) -> Jet<Vector3<f64>> {
+        self.jet(uv)
+    }
+}
+
+impl PatchwiseSurface for RationalBezierTriangle<Vector3<f64>> {
+    fn patch_count(&self) -> usize {
+        1
+    }
+    fn patch_domain(&self, _: usize) -> Triangle2 {
+        *self.domain()
+    }
+    fn patch_jet(&self, _: usize, uv: Point2<f64>, _: Bary, _: &BaryMap) -> Jet<Vector3<f64>> {
+        // Weights are positive (checked on construction), so the denominator is positive on
+        // the domain triangle.
+        self.jet(uv).expect("positive weights")
+    }
+}
+
 /// The PS surface kinds of a file, in one type that forwards the traits.
 #[derive(Clone, Debug)]
 pub enum PsSurface {
@@ -324,6 +381,29 @@ impl ParametricSurface for PsSurface {
             PsSurface::Functional(s) => s.jet_with(uv, cursor),
             PsSurface::Parametric(s) => s.jet_with(uv, cursor),
             PsSurface::Rational(s) => s.jet_with(uv, cursor),
+        }
+    }
+}
+
+impl PatchwiseSurface for PsSurface {
+    fn patch_count(&self) -> usize {
+        6 * self.basis().triangulation().triangle_count()
+    }
+    fn patch_domain(&self, k: usize) -> Triangle2 {
+        self.basis().sub_triangle(k / 6, k % 6)
+    }
+    fn patch_jet(&self, k: usize, uv: Point2<f64>, bary: Bary, map: &BaryMap) -> Jet<Vector3<f64>> {
+        let loc = crate::ps::SubLocation {
+            triangle: k / 6,
+            sub: k % 6,
+            bary,
+            dx: map.dx(),
+            dy: map.dy(),
+        };
+        match self {
+            PsSurface::Functional(s) => graph_jet(uv, &s.jet_at(&loc).jet),
+            PsSurface::Parametric(s) => s.jet_at(&loc).jet,
+            PsSurface::Rational(s) => s.jet_at(&loc).jet,
         }
     }
 }
@@ -445,6 +525,18 @@ impl Surface {
     /// True for a functional surface (evaluation points may be given as x, y).
     pub fn is_functional(&self) -> bool {
         self.kind_name() == "functional"
+    }
+}
+
+impl PatchwiseSurface for Surface {
+    fn patch_count(&self) -> usize {
+        self.general().patch_count()
+    }
+    fn patch_domain(&self, k: usize) -> Triangle2 {
+        self.general().patch_domain(k)
+    }
+    fn patch_jet(&self, k: usize, uv: Point2<f64>, bary: Bary, map: &BaryMap) -> Jet<Vector3<f64>> {
+        self.general().patch_jet(k, uv, bary, map)
     }
 }
 

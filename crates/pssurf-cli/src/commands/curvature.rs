@@ -1,0 +1,62 @@
+//! `pssurf curvature`: exact curvature at given parameters or on a grid.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use pssurf::interrogate::Curvature;
+use pssurf::surface::ParametricSurface;
+
+use crate::points::{Outside, PointArgs, evaluate_table};
+
+/// The output columns.
+pub const COLUMNS: [&str; 17] = [
+    "u", "v", "x", "y", "z", "K", "H", "k1", "k2", "kabs", "d1x", "d1y", "d1z", "d2x", "d2y",
+    "d2z", "patch",
+];
+
+/// Arguments of `pssurf curvature`.
+#[derive(clap::Args, Debug)]
+pub struct CurvatureArgs {
+    /// The surface file.
+    #[arg(value_name = "SURF.json")]
+    pub surface: PathBuf,
+    /// Where to evaluate.
+    #[command(flatten)]
+    pub points: PointArgs,
+    /// Output file: `.npy` (float64 array) or anything else for CSV; standard output (CSV)
+    /// when absent.
+    #[arg(short, long, value_name = "OUT.csv|OUT.npy")]
+    pub output: Option<PathBuf>,
+    /// Points outside the domain: an error naming the point (default), NaN values, or skipped.
+    #[arg(long, value_enum, default_value_t = Outside::Error)]
+    pub outside: Outside,
+}
+
+/// Runs `pssurf curvature`.
+pub fn run(args: &CurvatureArgs) -> Result<()> {
+    let surface = pssurf::io::load(&args.surface)?;
+    let pts = args
+        .points
+        .resolve(surface.domain_bounds(), surface.is_functional())?;
+    let columns: Vec<String> = COLUMNS.map(String::from).to_vec();
+    evaluate_table(
+        &surface,
+        &pts,
+        &columns,
+        args.outside,
+        args.output.as_deref(),
+        |j, row| {
+            row[0..3].copy_from_slice(j.jet.value.as_slice());
+            row[14] = j.patch.map_or(f64::NAN, |p| p.index() as f64);
+            match Curvature::from_jet(&j.jet) {
+                Ok(c) => {
+                    row[3..8].copy_from_slice(&[c.gaussian, c.mean, c.k1, c.k2, c.absolute()]);
+                    row[8..11].copy_from_slice(c.dir1.as_slice());
+                    row[11..14].copy_from_slice(c.dir2.as_slice());
+                }
+                // Undefined at a singular point (s_u × s_v = 0).
+                Err(_) => row[3..14].fill(f64::NAN),
+            }
+        },
+    )
+}

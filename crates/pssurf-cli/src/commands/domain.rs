@@ -1,0 +1,82 @@
+//! `pssurf domain`: the parameter domain as SVG — triangulation, PS refinement, PS-points,
+//! PS-triangles, optionally coloured by curvature.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use pssurf::interrogate::CurvatureQuantity;
+use pssurf::io::{Durability, atomic_write_bytes};
+use pssurf_viz::DomainOptions;
+
+use crate::colors::{ColorArgs, quantity};
+
+/// What a domain picture can show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Layer {
+    /// The triangles of Δ.
+    Triangulation,
+    /// The split lines of the refinement Δ*.
+    Refinement,
+    /// The PS-points of every vertex.
+    PsPoints,
+    /// The PS-triangles.
+    PsTriangles,
+    /// Vertex numbers.
+    Labels,
+}
+
+/// Arguments of `pssurf domain`.
+#[derive(clap::Args, Debug)]
+pub struct DomainArgs {
+    /// The surface file.
+    #[arg(value_name = "SURF.json")]
+    pub surface: PathBuf,
+    /// The layers to draw (comma-separated).
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [Layer::Triangulation, Layer::Refinement, Layer::PsTriangles])]
+    pub show: Vec<Layer>,
+    /// Colour the sub-triangles by a curvature quantity (K, H, k1, k2, kabs), piece by piece.
+    #[arg(long, value_name = "QUANTITY", value_parser = quantity)]
+    pub color: Option<CurvatureQuantity>,
+    /// Colours for --color.
+    #[command(flatten)]
+    pub colors: ColorArgs,
+    /// Sampling level for --color: each sub-triangle becomes 4^L cells.
+    #[arg(long, value_name = "L", default_value_t = 2)]
+    pub level: u32,
+    /// Picture width in pixels.
+    #[arg(long, default_value_t = 900.0)]
+    pub width: f64,
+    /// The SVG file to write.
+    #[arg(short, long, value_name = "OUT.svg")]
+    pub output: PathBuf,
+}
+
+/// Runs `pssurf domain`.
+pub fn run(args: &DomainArgs) -> Result<()> {
+    if !(100.0..=20000.0).contains(&args.width) {
+        bail!("--width must be between 100 and 20000");
+    }
+    if args.level > 6 {
+        bail!("--level is at most 6 for a domain picture");
+    }
+    let surface = pssurf::io::load(&args.surface)?;
+    let has = |l| args.show.contains(&l);
+    let q = args.color.unwrap_or(CurvatureQuantity::Mean);
+    let opts = DomainOptions {
+        triangulation: has(Layer::Triangulation),
+        refinement: has(Layer::Refinement),
+        ps_points: has(Layer::PsPoints),
+        ps_triangles: has(Layer::PsTriangles),
+        vertex_labels: has(Layer::Labels),
+        color: args.color,
+        colormap: args.colors.map(q)?,
+        range: args.colors.range()?,
+        level: args.level,
+        width: args.width,
+    };
+    let svg = pssurf_viz::domain_svg(surface.general(), &opts);
+    atomic_write_bytes(&args.output, Durability::Atomic, svg.as_bytes())
+        .with_context(|| format!("writing {}", args.output.display()))?;
+    eprintln!("wrote {}", args.output.display());
+    Ok(())
+}

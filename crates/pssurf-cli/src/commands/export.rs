@@ -1,0 +1,124 @@
+//! `pssurf export`: the surface as a triangle mesh with curvature fields.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, anyhow, bail};
+use pssurf::interrogate::{CurvatureQuantity, sample_patches};
+use pssurf::io::{Durability, atomic_write};
+use pssurf_viz::plot::range_scale;
+use pssurf_viz::{FieldMesh, MeshFormat};
+
+use crate::colors::{ColorArgs, quantity};
+
+/// Arguments of `pssurf export`.
+#[derive(clap::Args, Debug)]
+pub struct ExportArgs {
+    /// The surface file.
+    #[arg(value_name = "SURF.json")]
+    pub surface: PathBuf,
+    /// ply, obj, stl, glb or vtk (default: from the output's extension).
+    #[arg(long, value_name = "FORMAT")]
+    pub format: Option<String>,
+    /// Sampling level: each PS sub-triangle becomes 4^L triangles.
+    #[arg(long, value_name = "L", default_value_t = 2)]
+    pub level: u32,
+    /// The curvature fields to store (comma-separated: K,H,k1,k2,kabs); by default all of
+    /// them go into the formats that carry fields (PLY, GLB, VTK). `--fields none` for none.
+    #[arg(long, value_delimiter = ',', value_name = "K,H,...")]
+    pub fields: Option<Vec<String>>,
+    /// Colour the vertices by this quantity (PLY, OBJ, GLB, VTK).
+    #[arg(long, value_name = "QUANTITY", default_value = "H", value_parser = quantity)]
+    pub color_by: CurvatureQuantity,
+    /// Colours for --color-by.
+    #[command(flatten)]
+    pub colors: ColorArgs,
+    /// The mesh file to write.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+}
+
+/// Runs `pssurf export`.
+pub fn run(args: &ExportArgs) -> Result<()> {
+    let name = match &args.format {
+        Some(f) => f.clone(),
+        None => args
+            .output
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_string(),
+    };
+    let format = MeshFormat::parse(&name).ok_or_else(|| anyhow!("unknown mesh format `{name}` (ply, obj, stl, glb, vtk); give --format or a known extension"))?;
+    if args.level > 7 {
+        bail!("--level is at most 7");
+    }
+    let fields: Vec<CurvatureQuantity> = match &args.fields {
+        None => CurvatureQuantity::ALL.to_vec(),
+        Some(v) if v.len() == 1 && v[0] == "none" => Vec::new(),
+        Some(v) => v
+            .iter()
+            .map(|s| quantity(s).map_err(|e| anyhow!(e)))
+            .collect::<Result<_>>()?,
+    };
+    if !format.carries_fields() && args.fields.is_some() && !fields.is_empty() {
+        bail!("{name} files cannot store scalar fields; use ply, glb or vtk (or --fields none)");
+    }
+    let surface = pssurf::io::load(&args.surface)?;
+    let sampled = sample_patches(&surface, args.level, true);
+    let field_values: Vec<(String, Vec<f64>)> = if format.carries_fields() {
+        fields
+            .iter()
+            .map(|&q| (q.short_name().to_string(), sampled.quantity(q)))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let colors = if format.carries_colors() {
+        let values = sampled.quantity(args.color_by);
+        let map = args.colors.map(args.color_by)?;
+        let (lo, hi) = pssurf::surface::ParametricSurface::domain_bounds(&surface);
+        let scale = range_scale(
+            args.colors.range()?,
+            &map,
+            args.color_by,
+            &values,
+            (hi - lo).norm(),
+        );
+        Some(
+            values
+                .iter()
+                .map(|&v| map.at(scale.position(v)))
+                .collect::<Vec<_>>(),
+        )
+    } else {
+        None
+    };
+    let mesh = FieldMesh {
+        mesh: &sampled.mesh,
+        fields: &field_values,
+        colors: colors.as_deref(),
+    };
+    atomic_write(&args.output, Durability::Atomic, |w| {
+        pssurf_viz::write_mesh(w, format, &mesh).map_err(|e| anyhow!(e))
+    })
+    .with_context(|| format!("writing {}", args.output.display()))?;
+    eprintln!(
+        "wrote {} ({} vertices, {} triangles{})",
+        args.output.display(),
+        sampled.mesh.positions.len(),
+        sampled.mesh.triangles.len(),
+        if field_values.is_empty() {
+            String::new()
+        } else {
+            format!(
+                ", fields {}",
+                field_values
+                    .iter()
+                    .map(|f| f.0.as_str())
+                    .collect::<Vec<_>>()
+                    .join(",")
+            )
+        }
+    );
+    Ok(())
+}

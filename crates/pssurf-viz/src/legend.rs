@@ -1,0 +1,183 @@
+//! The legend: a colour bar with numeric ticks and the quantity's name.
+
+use crate::colormap::{ColorMap, ColorScale};
+use crate::text::{Align, TextStyle, draw_text, text_width};
+
+/// A rectangle in pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    /// Left edge.
+    pub x: f32,
+    /// Top edge.
+    pub y: f32,
+    /// Width.
+    pub w: f32,
+    /// Height.
+    pub h: f32,
+}
+
+/// A "nice" step (1, 2 or 5 times a power of ten) close to `raw`.
+pub fn nice_step(raw: f64) -> f64 {
+    if !(raw > 0.0 && raw.is_finite()) {
+        return 1.0;
+    }
+    let p = 10f64.powf(raw.log10().floor());
+    let m = raw / p;
+    p * if m < 1.5 {
+        1.0
+    } else if m < 3.5 {
+        2.0
+    } else if m < 7.5 {
+        5.0
+    } else {
+        10.0
+    }
+}
+
+/// A tick label: as many decimals as the step needs, scientific notation for very large or
+/// small steps.
+pub fn format_tick(v: f64, step: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    if !(1e-4..1e5).contains(&step) {
+        return format!("{v:.1e}");
+    }
+    let decimals = (-step.log10().floor()).max(0.0) as usize;
+    format!("{v:.decimals$}")
+}
+
+/// The tick values of a scale, with positions in [0, 1].
+pub fn ticks(scale: &ColorScale) -> Vec<(f64, f64)> {
+    let (lo, hi) = match *scale {
+        ColorScale::Linear { lo, hi } => (lo, hi),
+        // The contrast curve reaches κ_norm = 0.9 at ln 10 / C: tick up to there.
+        ColorScale::Contrast { c } => {
+            let m = std::f64::consts::LN_10 / c;
+            (-m, m)
+        }
+    };
+    let step = nice_step((hi - lo) / 5.0);
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    (first..=last)
+        .map(|k| k as f64 * step)
+        .map(|v| (v, scale.position(v)))
+        .filter(|(_, t)| (0.0..=1.0).contains(t))
+        .collect()
+}
+
+/// Draws the legend into `area` of the picture: the title (wrapped at spaces) at the top, a
+/// vertical colour bar (value increasing upwards) with tick marks and labels.
+pub fn draw_legend(
+    image: &mut [[u8; 3]],
+    width: usize,
+    area: Rect,
+    title: &str,
+    map: &ColorMap,
+    scale: &ColorScale,
+) {
+    let font = (area.w / 9.0).clamp(11.0, 18.0);
+    let ink = [20, 20, 20];
+    let style = TextStyle {
+        size: font,
+        color: ink,
+        align: Align::Left,
+    };
+    // Title, wrapped to the area's width.
+    let mut lines: Vec<String> = Vec::new();
+    for word in title.split_whitespace() {
+        match lines.last_mut() {
+            Some(l) if text_width(&format!("{l} {word}"), font) <= area.w - 4.0 => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    let mut y = area.y + font;
+    for l in &lines {
+        draw_text(image, width, area.x + 2.0, y, l, &style);
+        y += font * 1.2;
+    }
+    let bar = Rect {
+        x: area.x + 4.0,
+        y: y + 0.5 * font,
+        w: (area.w * 0.18).clamp(10.0, 24.0),
+        h: (area.y + area.h - y - 1.5 * font).max(10.0),
+    };
+    let height = image.len() / width.max(1);
+    let (x0, x1) = (bar.x.round() as usize, (bar.x + bar.w).round() as usize);
+    let (y0, y1) = (bar.y.round() as usize, (bar.y + bar.h).round() as usize);
+    for row in y0..y1.min(height) {
+        let t = 1.0 - (row - y0) as f64 / (y1 - y0).max(1) as f64;
+        let c = map.at(t);
+        for col in x0..x1.min(width) {
+            image[row * width + col] = c;
+        }
+    }
+    // A thin frame.
+    for row in y0.saturating_sub(1)..(y1 + 1).min(height) {
+        for col in [x0.saturating_sub(1), x1] {
+            if col < width {
+                image[row * width + col] = ink;
+            }
+        }
+    }
+    for col in x0.saturating_sub(1)..(x1 + 1).min(width) {
+        for row in [y0.saturating_sub(1), y1] {
+            if row < height {
+                image[row * width + col] = ink;
+            }
+        }
+    }
+    let ticks = ticks(scale);
+    let step = if ticks.len() > 1 {
+        ticks[1].0 - ticks[0].0
+    } else {
+        1.0
+    };
+    for (v, t) in ticks {
+        let row = (bar.y + (1.0 - t as f32) * bar.h).round();
+        for col in x1..(x1 + 5).min(width) {
+            if (row as usize) < height {
+                image[row as usize * width + col] = ink;
+            }
+        }
+        draw_text(
+            image,
+            width,
+            bar.x + bar.w + 8.0,
+            row + 0.35 * font,
+            &format_tick(v, step),
+            &style,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_ticks() {
+        assert_eq!(nice_step(0.23), 0.2);
+        assert_eq!(nice_step(4.0), 5.0);
+        assert_eq!(nice_step(0.0013), 0.001);
+        let t = ticks(&ColorScale::Linear { lo: -1.3, hi: 1.3 });
+        let v: Vec<f64> = t.iter().map(|x| x.0).collect();
+        assert_eq!(v, vec![-1.0, -0.5, 0.0, 0.5, 1.0]);
+        assert_eq!(format_tick(0.5, 0.5), "0.5");
+        assert_eq!(format_tick(-2.0, 1.0), "-2");
+        assert_eq!(format_tick(3e-6, 1e-6), "3.0e-6");
+        // Contrast scale: symmetric about the middle of the bar.
+        let t = ticks(&ColorScale::Contrast { c: 1.0 });
+        assert!(t.iter().any(|&(v, p)| v == 0.0 && (p - 0.5).abs() < 1e-15));
+        for &(v, p) in &t {
+            assert!(
+                t.iter()
+                    .any(|&(w, q)| w == -v && (p + q - 1.0).abs() < 1e-12)
+            );
+        }
+    }
+}

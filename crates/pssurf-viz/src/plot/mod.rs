@@ -1,0 +1,584 @@
+//! Pictures of surfaces: shaded, coloured by a curvature quantity, zebra stripes or
+//! isophotes, with overlays (triangulation, PS refinement, control triangles, boundary) and a
+//! legend — rendered in software, so no GPU or display is needed.
+
+use nalgebra::{Point2, Vector3};
+use pssurf::interrogate::{CurvatureQuantity, SampledSurface, sample_patches};
+use pssurf::surface::{Cursor, ParametricSurface, PatchwiseSurface, PsSurface};
+use rayon::prelude::*;
+
+use crate::camera::{Camera, Projection, View};
+use crate::colormap::{ColorMap, ColorScale};
+use crate::legend::{Rect, draw_legend};
+use crate::raster::{GBuffer, ScreenVertex, draw_segment, rasterize, shade_pixels};
+
+/// What the picture shows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Show {
+    /// The lit surface in a neutral colour (back faces warmer).
+    Shaded,
+    /// A curvature quantity through a colour map, with a legend.
+    Quantity(CurvatureQuantity),
+    /// Zebra stripes: the reflection of a striped environment (bands of latitude around an
+    /// axis in the screen plane); stripes run smoothly where the surface is C², kink where it
+    /// is only C¹ (curvature jumps), break where it is only C⁰.
+    Zebra,
+    /// Isophotes: bands of equal illumination n·L.
+    Isophotes,
+}
+
+/// How normals are interpolated for lighting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    /// Per-pixel interpolated normals (Phong shading).
+    Smooth,
+    /// Colours lit at the vertices and interpolated (Gouraud shading).
+    Gouraud,
+    /// One normal per mesh triangle.
+    Flat,
+}
+
+/// Lines drawn over the surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Overlays {
+    /// The triangulation Δ (its edges on the surface).
+    pub wire: bool,
+    /// The Powell–Sabin refinement Δ* (the split lines inside each triangle).
+    pub refinement: bool,
+    /// The control triangles (Definition 2.24).
+    pub control: bool,
+    /// The boundary of the surface.
+    pub boundary: bool,
+}
+
+/// How the colour range is chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Range {
+    /// Automatic: symmetric about 0 for signed quantities (98th percentile of |q|), 1st–99th
+    /// percentile otherwise; with the `seed` map, the contrast curve with automatic C.
+    Auto,
+    /// A fixed linear range.
+    Fixed(f64, f64),
+    /// The seed's contrast curve with this C.
+    Contrast(f64),
+}
+
+/// Zebra and isophote band settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bands {
+    /// The direction of the bands' axis on the screen, in degrees (0: the axis points right
+    /// and the bands run up and down).
+    pub angle_deg: f64,
+    /// The angular width of one band, in degrees.
+    pub width_deg: f64,
+}
+
+impl Default for Bands {
+    fn default() -> Self {
+        Bands {
+            angle_deg: 0.0,
+            width_deg: 5.0,
+        }
+    }
+}
+
+/// Everything that decides a picture.
+#[derive(Clone, Debug)]
+pub struct PlotOptions {
+    /// What to show.
+    pub show: Show,
+    /// The colour map for quantities.
+    pub colormap: ColorMap,
+    /// The colour range.
+    pub range: Range,
+    /// Sampling level: each PS sub-triangle is split into 4^level mesh triangles.
+    pub level: u32,
+    /// Picture width in pixels.
+    pub width: usize,
+    /// Picture height in pixels.
+    pub height: usize,
+    /// The camera.
+    pub camera: Camera,
+    /// Normal interpolation.
+    pub shading: Shading,
+    /// Overlays.
+    pub overlays: Overlays,
+    /// Draw a legend for quantities.
+    pub legend: bool,
+    /// Also light the curvature colours (off: flat colours, as curvature plots usually are).
+    pub lit: bool,
+    /// Zebra / isophote bands.
+    pub bands: Bands,
+    /// Background colour.
+    pub background: [u8; 3],
+}
+
+impl Default for PlotOptions {
+    fn default() -> Self {
+        PlotOptions {
+            show: Show::Shaded,
+            colormap: ColorMap::named("coolwarm").expect("built-in"),
+            range: Range::Auto,
+            level: 2,
+            width: 800,
+            height: 600,
+            camera: Camera::default(),
+            shading: Shading::Smooth,
+            overlays: Overlays::default(),
+            legend: true,
+            lit: false,
+            bands: Bands::default(),
+            background: [255, 255, 255],
+        }
+    }
+}
+
+/// A rendered picture.
+#[derive(Clone, Debug)]
+pub struct Picture {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// RGB pixels, row-major.
+    pub pixels: Vec<[u8; 3]>,
+    /// The colour scale used (for quantities).
+    pub scale: Option<ColorScale>,
+    /// The number of mesh triangles drawn.
+    pub triangles: usize,
+}
+
+impl Picture {
+    /// The picture as an `image` buffer.
+    pub fn to_image(&self) -> image::RgbImage {
+        let raw: Vec<u8> = self.pixels.iter().flatten().copied().collect();
+        image::RgbImage::from_raw(self.width as u32, self.height as u32, raw).expect("sizes agree")
+    }
+
+    /// Encodes the picture as PNG.
+    pub fn write_png(&self, w: &mut dyn std::io::Write) -> image::ImageResult<()> {
+        let mut bytes = Vec::new();
+        self.to_image().write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )?;
+        w.write_all(&bytes).map_err(image::ImageError::IoError)
+    }
+}
+
+/// A polyline in space drawn over the surface.
+#[derive(Clone, Debug)]
+pub struct Polyline {
+    /// The points.
+    pub points: Vec<Vector3<f64>>,
+    /// The colour.
+    pub color: [u8; 3],
+    /// 1 or 2 pixels.
+    pub thickness: usize,
+}
+
+/// Renders a surface.
+pub fn plot(surface: &PsSurface, opts: &PlotOptions) -> Picture {
+    let need_curvature = matches!(opts.show, Show::Quantity(_));
+    let sampled = sample_patches(surface, opts.level, need_curvature);
+    let lines = overlay_lines(surface, &opts.overlays, opts.level);
+    plot_sampled(&sampled, &lines, opts)
+}
+
+/// The overlay lines of a surface, sampled finely enough for `level`.
+pub fn overlay_lines(surface: &PsSurface, overlays: &Overlays, level: u32) -> Vec<Polyline> {
+    let basis = surface.basis();
+    let tri = basis.triangulation();
+    let steps = (2usize << level.min(6)).max(4);
+    let along = |a: Point2<f64>, b: Point2<f64>, cursor: &mut Cursor| -> Vec<Vector3<f64>> {
+        (0..=steps)
+            .filter_map(|k| {
+                let t = k as f64 / steps as f64;
+                let p = Point2::from(a.coords * (1.0 - t) + b.coords * t);
+                surface.jet_with(p, cursor).ok().map(|j| j.jet.value)
+            })
+            .collect()
+    };
+    let mut out = Vec::new();
+    if overlays.wire || overlays.boundary {
+        for t in 0..tri.triangle_count() {
+            for i in 0..3 {
+                let boundary = tri.is_boundary_edge(t, i);
+                let (a, b) = tri.edge_vertices(t, i);
+                // Each interior edge once.
+                let draw =
+                    (overlays.wire && (boundary || a < b)) || (overlays.boundary && boundary);
+                if draw {
+                    let mut c = Cursor(t);
+                    out.push(Polyline {
+                        points: along(tri.vertex(a), tri.vertex(b), &mut c),
+                        color: if boundary && overlays.boundary {
+                            [0, 0, 0]
+                        } else {
+                            [40, 40, 40]
+                        },
+                        thickness: if boundary && overlays.boundary { 2 } else { 1 },
+                    });
+                }
+            }
+        }
+    }
+    if overlays.refinement {
+        let r = basis.refinement();
+        for t in 0..tri.triangle_count() {
+            let z = r.z(t);
+            let v = tri.triangle(t);
+            let mut c = Cursor(t);
+            for k in 0..3 {
+                for end in [tri.vertex(v[k]), r.edge_point(tri, t, k)] {
+                    out.push(Polyline {
+                        points: along(z, end, &mut c),
+                        color: [30, 60, 200],
+                        thickness: 1,
+                    });
+                }
+            }
+        }
+    }
+    if overlays.control {
+        for c in surface.control_points() {
+            out.push(Polyline {
+                points: vec![c[0], c[1], c[2], c[0]],
+                color: [230, 120, 0],
+                thickness: 1,
+            });
+        }
+    }
+    out
+}
+
+/// Renders a sampled surface with lines.
+pub fn plot_sampled(sampled: &SampledSurface, lines: &[Polyline], opts: &PlotOptions) -> Picture {
+    let (width, height) = (opts.width.max(1), opts.height.max(1));
+    let mesh = &sampled.mesh;
+    let values = match opts.show {
+        Show::Quantity(q) => Some(sampled.quantity(q)),
+        _ => None,
+    };
+    let diameter = {
+        let c = bounding_corners(mesh.positions.iter());
+        if c.is_empty() {
+            1.0
+        } else {
+            (c[7] - c[0]).norm().max(1e-300)
+        }
+    };
+    let scale = values.as_ref().map(|v| resolve_scale(opts, v, diameter));
+    let legend_w = if scale.is_some() && opts.legend {
+        (width as f64 * 0.17)
+            .clamp(110.0, 240.0)
+            .min(width as f64 * 0.5)
+    } else {
+        0.0
+    };
+    let area_w = width as f64 - legend_w;
+    // The scene: the surface and the lines.
+    let mut extent: Vec<Vector3<f64>> = bounding_corners(
+        mesh.positions
+            .iter()
+            .chain(lines.iter().flat_map(|l| l.points.iter())),
+    );
+    if extent.is_empty() {
+        extent.push(Vector3::zeros());
+    }
+    let view = View::fit(
+        &opts.camera,
+        &extent,
+        area_w,
+        height as f64,
+        Point2::new(0.5 * area_w, 0.5 * height as f64),
+    );
+    let key = |p: &crate::camera::Projected| match opts.camera.projection {
+        Projection::Orthographic => p.depth as f32,
+        Projection::Perspective { .. } => p.inv_w as f32,
+    };
+    let screen: Vec<ScreenVertex> = mesh
+        .positions
+        .par_iter()
+        .map(|p| {
+            let q = view.project(p);
+            ScreenVertex {
+                x: q.x as f32,
+                y: q.y as f32,
+                z: key(&q),
+                inv_w: q.inv_w as f32,
+            }
+        })
+        .collect();
+    let g = rasterize(&screen, &mesh.triangles, width, height);
+    let mut pixels = vec![opts.background; width * height];
+    let light = Light::new(&view);
+    shade(
+        &g,
+        &mut pixels,
+        sampled,
+        values.as_deref(),
+        scale.as_ref(),
+        opts,
+        &view,
+        &light,
+    );
+    // Lines, hidden behind nearer parts of the surface.
+    let diameter = (extent[extent.len() - 1] - extent[0]).norm().max(1e-300);
+    let tolerance = match opts.camera.projection {
+        Projection::Orthographic => 0.004 * diameter,
+        Projection::Perspective { .. } => {
+            let q = view.project(&(0.5 * (extent[0] + extent[extent.len() - 1])));
+            0.004 * diameter * q.inv_w * q.inv_w
+        }
+    } as f32;
+    for l in lines {
+        for w in l.points.windows(2) {
+            let (a, b) = (view.project(&w[0]), view.project(&w[1]));
+            let sa = ScreenVertex {
+                x: a.x as f32,
+                y: a.y as f32,
+                z: key(&a),
+                inv_w: a.inv_w as f32,
+            };
+            let sb = ScreenVertex {
+                x: b.x as f32,
+                y: b.y as f32,
+                z: key(&b),
+                inv_w: b.inv_w as f32,
+            };
+            draw_segment(&g, &mut pixels, sa, sb, l.color, l.thickness, tolerance);
+        }
+    }
+    if let (Some(s), true, Show::Quantity(q)) = (&scale, opts.legend, opts.show) {
+        let area = Rect {
+            x: area_w as f32 + 6.0,
+            y: 8.0,
+            w: legend_w as f32 - 12.0,
+            h: height as f32 - 16.0,
+        };
+        draw_legend(&mut pixels, width, area, q.long_name(), &opts.colormap, s);
+    }
+    Picture {
+        width,
+        height,
+        pixels,
+        scale,
+        triangles: mesh.triangles.len(),
+    }
+}
+
+/// The two extreme corners (min, max) of the bounding box of the points (finite ones only).
+fn bounding_corners<'a>(points: impl Iterator<Item = &'a Vector3<f64>>) -> Vec<Vector3<f64>> {
+    let (mut lo, mut hi) = (
+        Vector3::repeat(f64::INFINITY),
+        Vector3::repeat(f64::NEG_INFINITY),
+    );
+    let mut any = false;
+    for p in points.filter(|p| p.iter().all(|x| x.is_finite())) {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+        any = true;
+    }
+    if !any {
+        return Vec::new();
+    }
+    (0..8)
+        .map(|k| {
+            Vector3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect()
+}
+
+/// The colour scale for the options and the values of a surface of the given diameter
+/// (curvatures below 10⁻⁹ of 1/diameter, or 1/diameter² for K, count as zero).
+pub fn resolve_scale(opts: &PlotOptions, values: &[f64], diameter: f64) -> ColorScale {
+    let q = match opts.show {
+        Show::Quantity(q) => q,
+        _ => CurvatureQuantity::Mean,
+    };
+    range_scale(opts.range, &opts.colormap, q, values, diameter)
+}
+
+/// The colour scale of a range choice for a quantity's values (see [`resolve_scale`]).
+pub fn range_scale(
+    range: Range,
+    map: &ColorMap,
+    q: CurvatureQuantity,
+    values: &[f64],
+    diameter: f64,
+) -> ColorScale {
+    let unit = 1.0 / diameter;
+    let negligible = 1e-9
+        * if q == CurvatureQuantity::Gaussian {
+            unit * unit
+        } else {
+            unit
+        };
+    match range {
+        Range::Fixed(lo, hi) => ColorScale::Linear { lo, hi },
+        Range::Contrast(c) => ColorScale::Contrast { c },
+        Range::Auto => ColorScale::auto(
+            values,
+            q.is_signed(),
+            map.name() == "seed" && q.is_signed(),
+            negligible,
+        ),
+    }
+}
+
+/// A directional light fixed to the camera (above, right, in front), with ambient and
+/// specular terms.
+struct Light {
+    dir: Vector3<f64>,
+}
+
+impl Light {
+    fn new(view: &View) -> Light {
+        Light {
+            dir: (0.35 * view.right + 0.55 * view.up + 0.75 * view.to_eye).normalize(),
+        }
+    }
+
+    /// The brightness factor and the specular highlight for a normal facing the eye.
+    #[inline]
+    fn light(&self, n: Vector3<f64>, to_eye: Vector3<f64>) -> (f64, f64) {
+        let diffuse = n.dot(&self.dir).max(0.0);
+        let h = (self.dir + to_eye).normalize();
+        let spec = n.dot(&h).max(0.0).powi(48);
+        (0.12 + 0.95 * diffuse, 0.3 * spec)
+    }
+}
+
+const FRONT: [f64; 3] = [150.0, 170.0, 205.0];
+const BACK: [f64; 3] = [205.0, 170.0, 140.0];
+
+#[allow(clippy::too_many_arguments)]
+fn shade(
+    g: &GBuffer,
+    pixels: &mut [[u8; 3]],
+    sampled: &SampledSurface,
+    values: Option<&[f64]>,
+    scale: Option<&ColorScale>,
+    opts: &PlotOptions,
+    view: &View,
+    light: &Light,
+) {
+    let mesh = &sampled.mesh;
+    let lit_color = |base: [f64; 3], n: Vector3<f64>, p: &Vector3<f64>| -> [u8; 3] {
+        let to_eye = -view.view_direction(p);
+        let (n, back) = if n.dot(&to_eye) >= 0.0 {
+            (n, false)
+        } else {
+            (-n, true)
+        };
+        let (b, s) = light.light(n, to_eye);
+        let base = if back && base == FRONT { BACK } else { base };
+        base.map(|c| (c * b + 255.0 * s).clamp(0.0, 255.0) as u8)
+    };
+    // Gouraud: light the vertices once.
+    let vertex_colors: Vec<[u8; 3]> =
+        if opts.shading == Shading::Gouraud && matches!(opts.show, Show::Shaded) {
+            mesh.positions
+                .par_iter()
+                .zip(&mesh.normals)
+                .map(|(p, n)| lit_color(FRONT, *n, p))
+                .collect()
+        } else {
+            Vec::new()
+        };
+    // The zebra environment: bands of latitude around an axis in the screen plane, along the
+    // screen's right for angle 0 (the bands then run up and down the picture).
+    let band_axis = {
+        let a = opts.bands.angle_deg.to_radians();
+        view.right * a.cos() + view.up * a.sin()
+    };
+    let band_width = opts.bands.width_deg.to_radians().max(1e-6);
+    shade_pixels(g, pixels, |t, b| {
+        let [i, j, k] = mesh.triangles[t as usize].map(|x| x as usize);
+        let b = b.map(|x| x as f64);
+        let p = mesh.positions[i] * b[0] + mesh.positions[j] * b[1] + mesh.positions[k] * b[2];
+        let normal = || -> Vector3<f64> {
+            match opts.shading {
+                Shading::Flat => {
+                    let (a, bb, c) = (mesh.positions[i], mesh.positions[j], mesh.positions[k]);
+                    (bb - a)
+                        .cross(&(c - a))
+                        .try_normalize(0.0)
+                        .unwrap_or_default()
+                }
+                _ => (mesh.normals[i] * b[0] + mesh.normals[j] * b[1] + mesh.normals[k] * b[2])
+                    .try_normalize(0.0)
+                    .unwrap_or_default(),
+            }
+        };
+        match opts.show {
+            Show::Shaded => {
+                if !vertex_colors.is_empty() {
+                    let (ci, cj, ck) = (vertex_colors[i], vertex_colors[j], vertex_colors[k]);
+                    std::array::from_fn(|c| {
+                        (ci[c] as f64 * b[0] + cj[c] as f64 * b[1] + ck[c] as f64 * b[2]).round()
+                            as u8
+                    })
+                } else {
+                    lit_color(FRONT, normal(), &p)
+                }
+            }
+            Show::Quantity(_) => {
+                let v = values.expect("values for quantities");
+                let q = v[i] * b[0] + v[j] * b[1] + v[k] * b[2];
+                let s = scale.expect("a scale for quantities");
+                let c = opts.colormap.at(s.position(q));
+                if opts.lit {
+                    let to_eye = -view.view_direction(&p);
+                    let n = normal();
+                    let n = if n.dot(&to_eye) >= 0.0 { n } else { -n };
+                    let (br, sp) = light.light(n, to_eye);
+                    c.map(|x| {
+                        (x as f64 * (0.35 + 0.65 * br) + 255.0 * sp * 0.5).clamp(0.0, 255.0) as u8
+                    })
+                } else {
+                    c
+                }
+            }
+            Show::Zebra => {
+                let d = view.view_direction(&p);
+                let n = normal();
+                let n = if n.dot(&d) <= 0.0 { n } else { -n };
+                let r = d - 2.0 * d.dot(&n) * n;
+                // Bands of latitude around the axis: the reflection of a striped environment.
+                let theta = r.dot(&band_axis).clamp(-1.0, 1.0).acos();
+                if (theta / band_width).floor() as i64 % 2 == 0 {
+                    [20, 20, 20]
+                } else {
+                    [245, 245, 245]
+                }
+            }
+            Show::Isophotes => {
+                let to_eye = -view.view_direction(&p);
+                let n = normal();
+                let n = if n.dot(&to_eye) >= 0.0 { n } else { -n };
+                let theta = n.dot(&light.dir).clamp(-1.0, 1.0).acos();
+                if (theta / band_width).floor() as i64 % 2 == 0 {
+                    [30, 30, 90]
+                } else {
+                    [235, 235, 200]
+                }
+            }
+        }
+    });
+}
+
+/// Renders any piecewise surface (a Bézier triangle, a NURBS later) without overlays.
+pub fn plot_patchwise<S: PatchwiseSurface + ?Sized>(surface: &S, opts: &PlotOptions) -> Picture {
+    let need_curvature = matches!(opts.show, Show::Quantity(_));
+    let sampled = sample_patches(surface, opts.level, need_curvature);
+    plot_sampled(&sampled, &[], opts)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,20 @@
+//! Surface interrogation: exact curvature at points, curvature sampled over a whole surface
+//! piece by piece, and fairness numbers.
+//!
+//! Everything is written against [`crate::surface::ParametricSurface`] (a point's jet) and
+//! [`crate::surface::PatchwiseSurface`] (the smooth pieces), so PS, UPS, NURPS surfaces and
+//! Bézier triangles are interrogated by the same code.
+
+pub mod curvature;
+pub mod fairness;
+pub mod sample;
+#[cfg(test)]
+mod tests;
+
+pub use curvature::{
+    Curvature, CurvatureQuantity, DEFAULT_UMBILIC_TOLERANCE, FundamentalForms, Singular,
+};
+pub use fairness::{
+    DEFAULT_QUADRATURE_DEGREE, Fairness, FairnessIntegrals, QuantityStats, fairness,
+};
+pub use sample::{SampledSurface, sample_patches};

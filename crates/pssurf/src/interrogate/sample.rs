@@ -1,0 +1,231 @@
+//! Sampling a piecewise surface patch by patch: a triangle mesh with exact points, normals
+//! and curvature at its vertices, for plots and export.
+
+use nalgebra::{Point2, Vector3};
+use rayon::prelude::*;
+
+use super::curvature::{Curvature, CurvatureQuantity, FundamentalForms};
+use crate::mesh::TriMesh;
+use crate::surface::PatchwiseSurface;
+
+/// A surface sampled piece by piece.
+///
+/// Each piece (a PS sub-triangle) is split into 4^level triangles by a regular grid of
+/// n = 2^level steps per side, so the mesh has (n + 1)(n + 2)/2 vertices and n² triangles per
+/// piece. Vertices on the edges between pieces appear once per piece, each with its own
+/// piece's curvature: a C¹ PS surface has continuous points and normals there, but its
+/// curvature jumps, and the plots must show it.
+#[derive(Clone, Debug, Default)]
+pub struct SampledSurface {
+    /// Points, unit normals (zero at singular points), parameters and triangles. Triangles
+    /// are counter-clockwise in the parameter domain, so they face along the normal
+    /// s_u × s_v.
+    pub mesh: TriMesh,
+    /// The piece each vertex was evaluated on.
+    pub patch: Vec<u32>,
+    /// The curvature at each vertex (`None` at singular points); empty when not requested.
+    pub curvature: Vec<Option<Curvature>>,
+}
+
+/// The number of grid steps per side of a piece at `level`.
+fn steps(level: u32) -> usize {
+    1usize << level
+}
+
+/// Sample `surface` at `level` (see [`SampledSurface`]), with curvature when asked. Runs in
+/// parallel over the pieces.
+///
+/// # Panics
+/// If the mesh would have more than 2³² vertices (level too high for the surface).
+pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
+    surface: &S,
+    level: u32,
+    with_curvature: bool,
+) -> SampledSurface {
+    let n = steps(level);
+    let per_vertex = (n + 1) * (n + 2) / 2;
+    let per_triangle = n * n;
+    let patches = surface.patch_count();
+    let total = patches * per_vertex;
+    assert!(
+        total <= u32::MAX as usize,
+        "too many vertices ({total}) for 32-bit indices"
+    );
+
+    let mut out = SampledSurface {
+        mesh: TriMesh {
+            positions: vec![Vector3::zeros(); total],
+            normals: vec![Vector3::zeros(); total],
+            uvs: vec![Point2::origin(); total],
+            triangles: vec![[0; 3]; patches * per_triangle],
+        },
+        patch: vec![0; total],
+        curvature: if with_curvature {
+            vec![None; total]
+        } else {
+            Vec::new()
+        },
+    };
+    let local = grid_triangles(n);
+    let fill = |k: usize, chunk: PatchChunk<'_>| fill_patch(surface, k, n, &local, chunk);
+    let mesh = &mut out.mesh;
+    let chunks = mesh
+        .positions
+        .par_chunks_mut(per_vertex)
+        .zip(mesh.normals.par_chunks_mut(per_vertex))
+        .zip(mesh.uvs.par_chunks_mut(per_vertex))
+        .zip(out.patch.par_chunks_mut(per_vertex))
+        .zip(mesh.triangles.par_chunks_mut(per_triangle));
+    if with_curvature {
+        chunks
+            .zip(out.curvature.par_chunks_mut(per_vertex))
+            .enumerate()
+            .for_each(
+                |(k, (((((positions, normals), uvs), patch), triangles), curvature))| {
+                    fill(
+                        k,
+                        PatchChunk {
+                            positions,
+                            normals,
+                            uvs,
+                            patch,
+                            triangles,
+                            curvature: Some(curvature),
+                        },
+                    )
+                },
+            );
+    } else {
+        chunks
+            .enumerate()
+            .for_each(|(k, ((((positions, normals), uvs), patch), triangles))| {
+                fill(
+                    k,
+                    PatchChunk {
+                        positions,
+                        normals,
+                        uvs,
+                        patch,
+                        triangles,
+                        curvature: None,
+                    },
+                )
+            });
+    }
+    out
+}
+
+/// The part of the output arrays that belongs to one piece.
+struct PatchChunk<'a> {
+    positions: &'a mut [Vector3<f64>],
+    normals: &'a mut [Vector3<f64>],
+    uvs: &'a mut [Point2<f64>],
+    patch: &'a mut [u32],
+    triangles: &'a mut [[u32; 3]],
+    curvature: Option<&'a mut [Option<Curvature>]>,
+}
+
+/// Evaluates piece `k` on its grid of `n` steps per side.
+fn fill_patch<S: PatchwiseSurface + ?Sized>(
+    surface: &S,
+    k: usize,
+    n: usize,
+    local: &[[u32; 3]],
+    mut out: PatchChunk<'_>,
+) {
+    let dom = surface.patch_domain(k);
+    let map = dom
+        .bary_map()
+        .expect("pieces of a valid surface are non-degenerate");
+    let inv = 1.0 / n as f64;
+    let mut v = 0;
+    for j in 0..=n {
+        for i in 0..=n - j {
+            let bary = [(n - i - j) as f64 * inv, i as f64 * inv, j as f64 * inv];
+            let uv = dom.point(bary);
+            let jet = surface.patch_jet(k, uv, bary, &map);
+            out.positions[v] = jet.value;
+            out.uvs[v] = uv;
+            out.patch[v] = k as u32;
+            if let Some(curv) = out.curvature.as_deref_mut() {
+                let c = Curvature::from_jet(&jet).ok();
+                out.normals[v] = c.map_or(Vector3::zeros(), |c| c.normal);
+                curv[v] = c;
+            } else {
+                out.normals[v] =
+                    FundamentalForms::from_jet(&jet).map_or(Vector3::zeros(), |f| f.normal);
+            }
+            v += 1;
+        }
+    }
+    let base = (k * ((n + 1) * (n + 2) / 2)) as u32;
+    let flip = dom.det() < 0.0;
+    for (t, l) in out.triangles.iter_mut().zip(local) {
+        *t = if flip {
+            [base + l[0], base + l[2], base + l[1]]
+        } else {
+            [base + l[0], base + l[1], base + l[2]]
+        };
+    }
+}
+
+/// The triangles of the regular grid with n steps on the reference triangle, as local vertex
+/// indices (rows of constant j, i increasing), counter-clockwise in (i, j).
+fn grid_triangles(n: usize) -> Vec<[u32; 3]> {
+    let row_start = |j: usize| (j * (2 * n + 3 - j) / 2) as u32;
+    let mut out = Vec::with_capacity(n * n);
+    for j in 0..n {
+        let (r0, r1) = (row_start(j), row_start(j + 1));
+        for i in 0..n - j {
+            let (a, b, c) = (r0 + i as u32, r0 + i as u32 + 1, r1 + i as u32);
+            out.push([a, b, c]);
+            if i + 1 < n - j {
+                out.push([b, r1 + i as u32 + 1, c]);
+            }
+        }
+    }
+    out
+}
+
+impl SampledSurface {
+    /// One curvature quantity per vertex (NaN at singular points).
+    ///
+    /// # Panics
+    /// If the surface was sampled without curvature.
+    pub fn quantity(&self, q: CurvatureQuantity) -> Vec<f64> {
+        assert_eq!(
+            self.curvature.len(),
+            self.mesh.positions.len(),
+            "sampled without curvature"
+        );
+        self.curvature
+            .par_iter()
+            .map(|c| c.map_or(f64::NAN, |c| c.get(q)))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_triangles_cover_the_reference_triangle_once() {
+        for n in [1usize, 2, 3, 8] {
+            let t = grid_triangles(n);
+            assert_eq!(t.len(), n * n);
+            // Vertex (i, j) of local index v; every triangle has positive area 1/2 in (i, j).
+            let mut ij = Vec::new();
+            for j in 0..=n {
+                for i in 0..=n - j {
+                    ij.push((i as f64, j as f64));
+                }
+            }
+            for tri in &t {
+                let [a, b, c] = tri.map(|k| ij[k as usize]);
+                let area = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+                assert!((area - 1.0).abs() < 1e-12, "n {n}: {tri:?}");
+            }
+        }
+    }
+}
