@@ -24,7 +24,7 @@ pub struct ColorArgs {
     pub range: String,
     /// Use the seed's contrast curve κ_norm = sign(κ)(1 − e^(−C|κ|)) with this C instead of a
     /// linear range (with --colormap seed and no --contrast, C is chosen automatically).
-    #[arg(long, value_name = "C")]
+    #[arg(long, value_name = "C", allow_hyphen_values = true)]
     pub contrast: Option<f64>,
 }
 

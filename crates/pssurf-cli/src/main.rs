@@ -72,6 +72,9 @@ enum Command {
     Fairness(commands::fairness::FairnessArgs),
     /// Export a triangle mesh with curvature fields: PLY, OBJ, STL, glTF binary, VTK.
     Export(commands::export::ExportArgs),
+    /// The main demonstration: noise on a UPS surface, removed by wavelet thresholding, and
+    /// compared by curvature plots and numbers in a gallery (DIR/index.html).
+    Showcase(commands::showcase::ShowcaseArgs),
 }
 
 fn main() -> ExitCode {
@@ -90,6 +93,7 @@ fn main() -> ExitCode {
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),
         Command::Export(a) => commands::export::run(a),
+        Command::Showcase(a) => commands::showcase::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

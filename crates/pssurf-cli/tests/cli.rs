@@ -1,87 +1,10 @@
 //! End-to-end tests of the `pssurf` binary.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn pssurf(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pssurf"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
+use std::path::Path;
 
-fn ok(args: &[&str]) -> String {
-    let out = pssurf(args);
-    assert!(
-        out.status.success(),
-        "pssurf {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn fails(args: &[&str]) -> String {
-    let out = pssurf(args);
-    assert!(!out.status.success(), "pssurf {args:?} should fail");
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(
-        !err.contains("panicked"),
-        "panic instead of an error: {err}"
-    );
-    err
-}
-
-fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/data")
-        .join(name)
-        .display()
-        .to_string()
-}
-
-fn tmp() -> tempfile::TempDir {
-    tempfile::tempdir().unwrap()
-}
-
-fn s(p: &Path) -> String {
-    p.display().to_string()
-}
-
-/// Parses a .npy file independently of the writer: magic, header dict, little-endian f64 data.
-fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
-    let bytes = std::fs::read(path).unwrap();
-    assert_eq!(&bytes[..6], b"\x93NUMPY");
-    let (major, header_len, start) = match bytes[6] {
-        1 => (1, u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
-        v => (
-            v,
-            u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
-            12,
-        ),
-    };
-    assert!(major >= 1);
-    let header = std::str::from_utf8(&bytes[start..start + header_len]).unwrap();
-    assert!(header.contains("'descr': '<f8'"), "{header}");
-    assert!(header.contains("'fortran_order': False"), "{header}");
-    let shape_txt = &header[header.find("'shape': (").unwrap() + 10..];
-    let shape: Vec<usize> = shape_txt[..shape_txt.find(')').unwrap()]
-        .split(',')
-        .filter(|t| !t.trim().is_empty())
-        .map(|t| t.trim().parse().unwrap())
-        .collect();
-    let data: Vec<f64> = bytes[start + header_len..]
-        .chunks(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-        .collect();
-    assert_eq!(data.len(), shape.iter().product::<usize>());
-    (shape, data)
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
+use common::*;
 
 #[test]
 fn fit_info_eval_on_the_example() {

@@ -11,6 +11,7 @@ pub mod info;
 pub mod new;
 pub mod noise;
 pub mod plot;
+pub mod showcase;
 pub mod subdivide;
 pub mod uniform;
 pub mod wavelet;

@@ -1,0 +1,345 @@
+//! End-to-end tests of the interrogation commands: curvature, plot, domain, fairness, export
+//! and the showcase.
+
+mod common;
+
+use std::path::Path;
+
+use common::*;
+
+/// A quadratic z = a x² + b xy + c y² sampled with exact gradients on a jittered grid.
+fn quadratic_csv(dir: &Path) -> String {
+    let mut text = String::from("x,y,z,zx,zy\n");
+    for j in 0..6 {
+        for i in 0..6 {
+            let (x, y) = (i as f64 / 5.0 + 0.01 * ((i * j) % 3) as f64, j as f64 / 5.0);
+            let (z, zx, zy) = (
+                x * x - 0.7 * x * y + 0.5 * y * y,
+                2.0 * x - 0.7 * y,
+                -0.7 * x + y,
+            );
+            text.push_str(&format!("{x},{y},{z},{zx},{zy}\n"));
+        }
+    }
+    s(&write(dir, "quad.csv", &text))
+}
+
+#[test]
+fn curvature_of_a_reproduced_quadratic_matches_the_closed_form() {
+    let d = tmp();
+    let surf = s(&d.path().join("q.json"));
+    ok(&["fit", &quadratic_csv(d.path()), "-o", &surf]);
+    let out = d.path().join("c.npy");
+    ok(&[
+        "curvature",
+        &surf,
+        "--grid",
+        "9x9",
+        "--outside",
+        "nan",
+        "-o",
+        &s(&out),
+    ]);
+    let (shape, data) = read_npy(&out);
+    assert_eq!(shape, vec![81, 17]);
+    let mut checked = 0;
+    for row in data.chunks(17) {
+        let (x, y) = (row[0], row[1]);
+        if row[5].is_nan() {
+            continue; // outside the (jittered) domain
+        }
+        let (fx, fy, fxx, fxy, fyy) = (2.0 * x - 0.7 * y, -0.7 * x + y, 2.0, -0.7, 1.0);
+        let w2: f64 = 1.0 + fx * fx + fy * fy;
+        let k = (fxx * fyy - fxy * fxy) / (w2 * w2);
+        let h = ((1.0 + fy * fy) * fxx - 2.0 * fx * fy * fxy + (1.0 + fx * fx) * fyy)
+            / (2.0 * w2 * w2.sqrt());
+        assert!(
+            (row[5] - k).abs() < 1e-10 && (row[6] - h).abs() < 1e-10,
+            "{row:?}"
+        );
+        assert!(
+            (row[7] + row[8] - 2.0 * h).abs() < 1e-10
+                && (row[9] - row[7].abs() - row[8].abs()).abs() < 1e-12
+        );
+        let d1 = (row[10].powi(2) + row[11].powi(2) + row[12].powi(2)).sqrt();
+        assert!((d1 - 1.0).abs() < 1e-12);
+        assert!(
+            row[16] >= 0.0 && row[16].fract() == 0.0,
+            "patch index {}",
+            row[16]
+        );
+        checked += 1;
+    }
+    assert!(checked > 50, "{checked}");
+    // CSV output has the documented header.
+    let csv = ok(&["curvature", &surf, "--grid", "2x2", "--outside", "skip"]);
+    assert!(
+        csv.starts_with("u,v,x,y,z,K,H,k1,k2,kabs,d1x,d1y,d1z,d2x,d2y,d2z,patch\n"),
+        "{csv}"
+    );
+}
+
+fn ups(dir: &Path) -> String {
+    let surf = s(&dir.join("u.json"));
+    ok(&[
+        "new",
+        "ups",
+        "--sides",
+        "6",
+        "--size",
+        "2",
+        "--height",
+        "0.3*sin(2*x)*cos(y)",
+        "-o",
+        &surf,
+    ]);
+    surf
+}
+
+#[test]
+fn plot_writes_pictures_with_legends() {
+    let d = tmp();
+    let surf = ups(d.path());
+    for show in [
+        "shaded",
+        "gaussian",
+        "mean",
+        "k1",
+        "k2",
+        "absolute",
+        "zebra",
+        "isophotes",
+    ] {
+        let png = d.path().join(format!("{show}.png"));
+        ok(&[
+            "plot",
+            &surf,
+            "--show",
+            show,
+            "--size",
+            "300x200",
+            "--level",
+            "2",
+            "-o",
+            &s(&png),
+        ]);
+        let img = image::open(&png).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (300, 200), "{show}");
+        assert_eq!(img.get_pixel(0, 0).0, [255, 255, 255]);
+    }
+    // Options: seed map with contrast, fixed range, overlays, perspective, flat shading.
+    let png = d.path().join("o.png");
+    ok(&[
+        "plot",
+        &surf,
+        "--show",
+        "mean",
+        "--colormap",
+        "seed",
+        "--contrast",
+        "2",
+        "--size",
+        "320x240",
+        "--wire",
+        "--refinement",
+        "--control",
+        "--boundary",
+        "--perspective",
+        "35",
+        "--shading",
+        "flat",
+        "--view",
+        "30,60",
+        "-o",
+        &s(&png),
+    ]);
+    ok(&[
+        "plot",
+        &surf,
+        "--show",
+        "k1",
+        "--range",
+        "-1,1",
+        "--colormap",
+        "viridis",
+        "-o",
+        &s(&png),
+        "--size",
+        "100x100",
+    ]);
+    // A user colour map from a file.
+    let stops = write(d.path(), "map.txt", "# blue to red\n0 #0000ff\n1 #ff0000\n");
+    ok(&[
+        "plot",
+        &surf,
+        "--show",
+        "mean",
+        "--colormap",
+        &s(&stops),
+        "-o",
+        &s(&png),
+        "--size",
+        "100x100",
+    ]);
+    // Bad options: clear errors and no picture.
+    let bad = d.path().join("bad.png");
+    for (args, why) in [
+        (vec!["--size", "5x5"], "between 16"),
+        (vec!["--range", "1"], "--range"),
+        (vec!["--range", "2,1"], "increasing"),
+        (vec!["--colormap", "nope"], "unknown colour map"),
+        (vec!["--contrast", "-1"], "positive"),
+        (vec!["--perspective", "200"], "field of view"),
+    ] {
+        let mut a = vec!["plot", &surf, "--show", "mean", "-o", bad.to_str().unwrap()];
+        a.extend(args);
+        let err = fails(&a);
+        assert!(err.contains(why), "{a:?}: {err}");
+        assert!(!bad.exists());
+    }
+}
+
+#[test]
+fn domain_pictures_are_svg() {
+    let d = tmp();
+    let surf = ups(d.path());
+    let svg = d.path().join("d.svg");
+    ok(&[
+        "domain",
+        &surf,
+        "--show",
+        "triangulation,refinement,ps-points,ps-triangles,labels",
+        "--color",
+        "H",
+        "-o",
+        &s(&svg),
+    ]);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
+    for part in [
+        "<polygon",
+        "<circle",
+        "linearGradient",
+        "mean curvature H",
+        "stroke-dasharray",
+    ] {
+        assert!(text.contains(part), "missing {part}");
+    }
+    assert!(
+        fails(&["domain", &surf, "--color", "Q", "-o", &s(&svg)])
+            .contains("not a curvature quantity")
+    );
+}
+
+#[test]
+fn fairness_reports_integrals() {
+    let d = tmp();
+    let surf = ups(d.path());
+    let json = ok(&["fairness", &surf, "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let area = v["integrals"]["area"].as_f64().unwrap();
+    assert!(area > 10.0 && area < 13.0, "{area}"); // a hexagon of side 2 is 10.39 flat
+    assert!(v["integrals"]["mean_squared"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["stats"].as_array().unwrap().len(), 5);
+    let table = ok(&["fairness", &surf]);
+    assert!(
+        table.contains("∫ H² dA") && table.contains("p50"),
+        "{table}"
+    );
+    // A plane: no bending at all.
+    let flat = s(&d.path().join("flat.json"));
+    ok(&[
+        "new", "ups", "--sides", "4", "--size", "3", "--height", "0.5*x-y", "-o", &flat,
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&ok(&["fairness", &flat, "--json"])).unwrap();
+    assert!(v["integrals"]["mean_squared"].as_f64().unwrap().abs() < 1e-20);
+    assert!(v["integrals"]["thin_plate"].as_f64().unwrap().abs() < 1e-20);
+}
+
+#[test]
+fn export_writes_every_format() {
+    let d = tmp();
+    let surf = ups(d.path());
+    let pieces = 6 * 24;
+    for (ext, level) in [
+        ("ply", 1u32),
+        ("obj", 1),
+        ("stl", 1),
+        ("glb", 1),
+        ("vtk", 1),
+    ] {
+        let out = d.path().join(format!("m.{ext}"));
+        ok(&[
+            "export",
+            &surf,
+            "--level",
+            &level.to_string(),
+            "-o",
+            &s(&out),
+        ]);
+        let bytes = std::fs::read(&out).unwrap();
+        let (verts, tris) = (pieces * 6, pieces * 4);
+        match ext {
+            "ply" => assert!(
+                String::from_utf8_lossy(&bytes[..400]).contains(&format!("element vertex {verts}"))
+            ),
+            "obj" => {
+                let t = String::from_utf8(bytes).unwrap();
+                assert_eq!(t.lines().filter(|l| l.starts_with("v ")).count(), verts);
+                assert_eq!(t.lines().filter(|l| l.starts_with("f ")).count(), tris);
+            }
+            "stl" => assert_eq!(bytes.len(), 84 + 50 * tris),
+            "glb" => assert_eq!(&bytes[..4], b"glTF"),
+            "vtk" => assert!(
+                String::from_utf8_lossy(&bytes[..200]).contains(&format!("POINTS {verts} double"))
+            ),
+            _ => unreachable!(),
+        }
+    }
+    let out = s(&d.path().join("m.stl"));
+    assert!(
+        fails(&["export", &surf, "--fields", "K", "-o", &out])
+            .contains("cannot store scalar fields")
+    );
+    assert!(
+        fails(&["export", &surf, "-o", &s(&d.path().join("m.xyz"))])
+            .contains("unknown mesh format")
+    );
+    ok(&[
+        "export",
+        &surf,
+        "--format",
+        "ply",
+        "--fields",
+        "K,H",
+        "-o",
+        &s(&d.path().join("two")),
+    ]);
+}
+
+#[test]
+fn showcase_makes_the_gallery() {
+    let d = tmp();
+    let dir = d.path().join("gallery");
+    ok(&["showcase", "--out", &s(&dir), "--size", "200x150"]);
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    for part in [
+        "soft thresholding 5 %",
+        "hard thresholding 5 %",
+        "soft thresholding 10 %",
+        "RMS distance",
+        "∫ H² dA",
+        "coefficients zeroed",
+    ] {
+        assert!(html.contains(part), "index.html lacks {part}");
+    }
+    // Every picture the page shows exists.
+    let mut count = 0;
+    for piece in html.split("src=\"").skip(1) {
+        let name = &piece[..piece.find('"').unwrap()];
+        assert!(dir.join(name).is_file(), "{name} missing");
+        count += 1;
+    }
+    // Six surfaces × four pictures, three of the basis function, two domain pictures.
+    assert_eq!(count, 6 * 4 + 3 + 2);
+}
