@@ -59,16 +59,20 @@ impl FundamentalForms {
     /// |s_u × s_v| ≤ 1e-14 |s_u| |s_v| (or a derivative is not finite).
     pub fn from_jet(j: &Jet<Vector3<f64>>) -> Result<Self, Singular> {
         let c = j.dx.cross(&j.dy);
-        let cross_norm = c.norm();
-        let size = j.dx.norm() * j.dy.norm();
-        if !(cross_norm > 1e-14 * size && size > 0.0 && size.is_finite()) {
-            return Err(Singular { cross_norm });
+        let (e, f, g) = (j.dx.dot(&j.dx), j.dx.dot(&j.dy), j.dy.dot(&j.dy));
+        // |c|² = EG − F² (Lagrange); compare squares: |c| > 1e-14 |s_u| |s_v|.
+        let c2 = c.norm_squared();
+        let size2 = e * g;
+        if !(c2 > 1e-28 * size2 && size2 > 0.0 && size2.is_finite()) {
+            return Err(Singular {
+                cross_norm: c2.sqrt(),
+            });
         }
-        let normal = c / cross_norm;
+        let normal = c * (1.0 / c2.sqrt());
         Ok(FundamentalForms {
-            e: j.dx.dot(&j.dx),
-            f: j.dx.dot(&j.dy),
-            g: j.dy.dot(&j.dy),
+            e,
+            f,
+            g,
             l: normal.dot(&j.dxx),
             m: normal.dot(&j.dxy),
             n: normal.dot(&j.dyy),
@@ -166,6 +170,110 @@ impl CurvatureQuantity {
     }
 }
 
+/// The shape operator in the orthonormal tangent frame e1 = s_u/|s_u|, e2 = n × e1:
+/// S = A⁻ᵀ [[L, M], [M, N]] A⁻¹ with A = [[a11, a12], [0, a22]] the frame coordinates of s_u
+/// and s_v, and A⁻¹ = [[i11, i12], [0, i22]].
+struct ShapeOperator {
+    e1: Vector3<f64>,
+    e2: Vector3<f64>,
+    i11: f64,
+    i12: f64,
+    i22: f64,
+    s11: f64,
+    s12: f64,
+    s22: f64,
+}
+
+impl ShapeOperator {
+    #[inline]
+    fn new(j: &Jet<Vector3<f64>>, forms: &FundamentalForms) -> Self {
+        let i11 = 1.0 / forms.e.sqrt();
+        let e1 = j.dx * i11;
+        let e2 = forms.normal.cross(&e1);
+        let a12 = j.dy.dot(&e1);
+        let i22 = 1.0 / j.dy.dot(&e2);
+        let i12 = -a12 * i11 * i22;
+        // C = B A⁻¹, then S = A⁻ᵀ C (symmetric).
+        let (l, m, n) = (forms.l, forms.m, forms.n);
+        let c11 = l * i11;
+        let c12 = l * i12 + m * i22;
+        let c22 = m * i12 + n * i22;
+        ShapeOperator {
+            e1,
+            e2,
+            i11,
+            i12,
+            i22,
+            s11: i11 * c11,
+            s12: i11 * c12,
+            s22: i12 * c12 + i22 * c22,
+        }
+    }
+
+    /// K and H by (20)–(21), κ1,2 = centre ± √(((S11 − S22)/2)² + S12²).
+    #[inline]
+    fn principal(&self, forms: &FundamentalForms) -> PrincipalCurvatures {
+        let half_diff = 0.5 * (self.s11 - self.s22);
+        let d = (half_diff * half_diff + self.s12 * self.s12).sqrt();
+        let centre = 0.5 * (self.s11 + self.s22);
+        let inv_det = 1.0 / forms.det_first();
+        let (e, f, g, l, m, n) = (forms.e, forms.f, forms.g, forms.l, forms.m, forms.n);
+        PrincipalCurvatures {
+            gaussian: (l * n - m * m) * inv_det,
+            mean: 0.5 * (n * e - 2.0 * m * f + l * g) * inv_det,
+            k1: centre + d,
+            k2: centre - d,
+        }
+    }
+}
+
+/// The curvature values at a point, without directions (cheaper; what plots and exports
+/// need). At singular points every value is NaN.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrincipalCurvatures {
+    /// Gaussian curvature K (20).
+    pub gaussian: f64,
+    /// Mean curvature H (21).
+    pub mean: f64,
+    /// The larger principal curvature κ1.
+    pub k1: f64,
+    /// The smaller principal curvature κ2.
+    pub k2: f64,
+}
+
+impl PrincipalCurvatures {
+    /// All NaN: the value at a singular point.
+    pub const UNDEFINED: PrincipalCurvatures = PrincipalCurvatures {
+        gaussian: f64::NAN,
+        mean: f64::NAN,
+        k1: f64::NAN,
+        k2: f64::NAN,
+    };
+
+    /// The values at a point from the surface's jet there, and the unit normal (as
+    /// [`Curvature::from_jet`] without the directions).
+    #[inline]
+    pub fn from_jet(j: &Jet<Vector3<f64>>) -> Result<(Self, Vector3<f64>), Singular> {
+        let forms = FundamentalForms::from_jet(j)?;
+        Ok((
+            ShapeOperator::new(j, &forms).principal(&forms),
+            forms.normal,
+        ))
+    }
+
+    /// The value of one quantity.
+    #[inline]
+    pub fn get(&self, q: CurvatureQuantity) -> f64 {
+        match q {
+            CurvatureQuantity::Gaussian => self.gaussian,
+            CurvatureQuantity::Mean => self.mean,
+            CurvatureQuantity::K1 => self.k1,
+            CurvatureQuantity::K2 => self.k2,
+            CurvatureQuantity::Absolute => self.k1.abs() + self.k2.abs(),
+        }
+    }
+}
+
 /// Everything about the curvature of a surface at a regular point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Curvature {
@@ -204,45 +312,50 @@ impl Curvature {
 
     /// As [`Curvature::from_jet`], with the forms already computed.
     pub fn from_forms(j: &Jet<Vector3<f64>>, forms: &FundamentalForms) -> Self {
-        let n = forms.normal;
-        let a11 = j.dx.norm();
-        let e1 = j.dx / a11;
-        let e2 = n.cross(&e1);
-        let a12 = j.dy.dot(&e1);
-        let a22 = j.dy.dot(&e2);
-        // A = [[a11, a12], [0, a22]]; A⁻¹ = [[1/a11, −a12/(a11 a22)], [0, 1/a22]].
-        let (i11, i12, i22) = (1.0 / a11, -a12 / (a11 * a22), 1.0 / a22);
-        // C = B A⁻¹, then S = A⁻ᵀ C.
-        let (l, m, nn) = (forms.l, forms.m, forms.n);
-        let c11 = l * i11;
-        let c12 = l * i12 + m * i22;
-        let c22 = m * i12 + nn * i22;
-        let s11 = i11 * c11;
-        let s12 = i11 * c12;
-        let s22 = i12 * c12 + i22 * c22;
-        let mean = forms.mean();
-        let half_diff = 0.5 * (s11 - s22);
-        let d = half_diff.hypot(s12);
-        let centre = 0.5 * (s11 + s22);
-        // Eigenvector of the larger eigenvalue: angle θ with tan 2θ = 2 S12 / (S11 − S22).
-        let theta = 0.5 * s12.atan2(half_diff);
-        let (sn, cs) = theta.sin_cos();
-        let dir1 = e1 * cs + e2 * sn;
-        let dir2 = n.cross(&dir1);
+        let s = ShapeOperator::new(j, forms);
+        let p = s.principal(forms);
+        // The eigenvector (x, y) of the larger eigenvalue κ1 of [[s11, s12], [s12, s22]]:
+        // (s12, κ1 − s11) or (κ1 − s22, s12), whichever is longer (both are unless S is a
+        // multiple of the identity, an umbilic, where any direction will do).
+        let (a, b) = ((s.s12, p.k1 - s.s11), (p.k1 - s.s22, s.s12));
+        let (na, nb) = (a.0 * a.0 + a.1 * a.1, b.0 * b.0 + b.1 * b.1);
+        let (x, y, n2) = if na >= nb {
+            (a.0, a.1, na)
+        } else {
+            (b.0, b.1, nb)
+        };
+        let (cs, sn) = if n2 > 0.0 {
+            let r = 1.0 / n2.sqrt();
+            (x * r, y * r)
+        } else {
+            (1.0, 0.0)
+        };
+        let dir1 = s.e1 * cs + s.e2 * sn;
+        let dir2 = forms.normal.cross(&dir1);
         let to_uv = |x: f64, y: f64| {
-            let w = Vector2::new(i11 * x + i12 * y, i22 * y);
+            let w = Vector2::new(s.i11 * x + s.i12 * y, s.i22 * y);
             w / w.norm()
         };
         Curvature {
-            gaussian: forms.gaussian(),
-            mean,
-            k1: centre + d,
-            k2: centre - d,
-            normal: n,
+            gaussian: p.gaussian,
+            mean: p.mean,
+            k1: p.k1,
+            k2: p.k2,
+            normal: forms.normal,
             dir1,
             dir2,
             dir1_uv: to_uv(cs, sn),
             dir2_uv: to_uv(-sn, cs),
+        }
+    }
+
+    /// The curvature values without the directions.
+    pub fn principal(&self) -> PrincipalCurvatures {
+        PrincipalCurvatures {
+            gaussian: self.gaussian,
+            mean: self.mean,
+            k1: self.k1,
+            k2: self.k2,
         }
     }
 

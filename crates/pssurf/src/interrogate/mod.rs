@@ -12,7 +12,8 @@ pub mod sample;
 mod tests;
 
 pub use curvature::{
-    Curvature, CurvatureQuantity, DEFAULT_UMBILIC_TOLERANCE, FundamentalForms, Singular,
+    Curvature, CurvatureQuantity, DEFAULT_UMBILIC_TOLERANCE, FundamentalForms, PrincipalCurvatures,
+    Singular,
 };
 pub use fairness::{
     DEFAULT_QUADRATURE_DEGREE, Fairness, FairnessIntegrals, QuantityStats, fairness,

@@ -4,7 +4,7 @@
 use nalgebra::{Point2, Vector3};
 use rayon::prelude::*;
 
-use super::curvature::{Curvature, CurvatureQuantity, FundamentalForms};
+use super::curvature::{CurvatureQuantity, FundamentalForms, PrincipalCurvatures};
 use crate::mesh::TriMesh;
 use crate::surface::PatchwiseSurface;
 
@@ -23,8 +23,9 @@ pub struct SampledSurface {
     pub mesh: TriMesh,
     /// The piece each vertex was evaluated on.
     pub patch: Vec<u32>,
-    /// The curvature at each vertex (`None` at singular points); empty when not requested.
-    pub curvature: Vec<Option<Curvature>>,
+    /// The curvature values at each vertex (NaN at singular points); empty when not
+    /// requested.
+    pub curvature: Vec<PrincipalCurvatures>,
 }
 
 /// The number of grid steps per side of a piece at `level`.
@@ -61,7 +62,7 @@ pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
         },
         patch: vec![0; total],
         curvature: if with_curvature {
-            vec![None; total]
+            vec![PrincipalCurvatures::UNDEFINED; total]
         } else {
             Vec::new()
         },
@@ -122,7 +123,7 @@ struct PatchChunk<'a> {
     uvs: &'a mut [Point2<f64>],
     patch: &'a mut [u32],
     triangles: &'a mut [[u32; 3]],
-    curvature: Option<&'a mut [Option<Curvature>]>,
+    curvature: Option<&'a mut [PrincipalCurvatures]>,
 }
 
 /// Evaluates piece `k` on its grid of `n` steps per side.
@@ -148,9 +149,8 @@ fn fill_patch<S: PatchwiseSurface + ?Sized>(
             out.uvs[v] = uv;
             out.patch[v] = k as u32;
             if let Some(curv) = out.curvature.as_deref_mut() {
-                let c = Curvature::from_jet(&jet).ok();
-                out.normals[v] = c.map_or(Vector3::zeros(), |c| c.normal);
-                curv[v] = c;
+                (curv[v], out.normals[v]) = PrincipalCurvatures::from_jet(&jet)
+                    .unwrap_or((PrincipalCurvatures::UNDEFINED, Vector3::zeros()));
             } else {
                 out.normals[v] =
                     FundamentalForms::from_jet(&jet).map_or(Vector3::zeros(), |f| f.normal);
@@ -198,10 +198,7 @@ impl SampledSurface {
             self.mesh.positions.len(),
             "sampled without curvature"
         );
-        self.curvature
-            .par_iter()
-            .map(|c| c.map_or(f64::NAN, |c| c.get(q)))
-            .collect()
+        self.curvature.par_iter().map(|c| c.get(q)).collect()
     }
 }
 
