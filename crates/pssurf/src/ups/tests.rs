@@ -631,11 +631,8 @@ mod denoise {
                 let k = (uniform(&mut r, 0.0, t.triangle_count() as f64) as usize)
                     .min(t.triangle_count() - 1);
                 let p = t.triangle_geometry(k).point(random_bary(&mut r));
-                let j = ps.jet(p).unwrap().jet;
-                let n = j.dx.cross(&j.dy).normalize();
-                let (e, f, g) = (j.dx.dot(&j.dx), j.dx.dot(&j.dy), j.dy.dot(&j.dy));
-                let (l, m, nn) = (n.dot(&j.dxx), n.dot(&j.dxy), n.dot(&j.dyy));
-                0.5 * (nn * e - 2.0 * m * f + l * g) / (e * g - f * f)
+                let jet = ps.jet(p).unwrap().jet;
+                crate::interrogate::Curvature::from_jet(&jet).unwrap().mean
             })
             .collect()
     }
