@@ -1,0 +1,516 @@
+//! The application state and its top-level layout: menu bar, scene tree and properties on
+//! the left, the 3D view in the centre, the domain view and algorithm panels on the right,
+//! a status bar below.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use pssurf::interrogate::CurvatureQuantity;
+use pssurf_viz::colormap::ColorScale;
+use pssurf_viz::plot::Range;
+
+use crate::camera::OrbitCamera;
+use crate::display::{self, DisplaySettings, ObjectMesh, ViewMode};
+use crate::document::Document;
+use crate::edit::{self, VertexControl};
+use crate::gpu::FrameGeometry;
+use crate::panels::{Panel, PanelContext, default_panels};
+use crate::scene::Scene;
+
+/// What is selected.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Selection {
+    /// The selected object.
+    pub object: Option<usize>,
+    /// The selected vertex (control triangle) of that object.
+    pub vertex: Option<usize>,
+}
+
+/// The geometry of the visible objects, rebuilt only when an object or a display setting
+/// changes.
+#[derive(Default)]
+pub struct GeometryCache {
+    meshes: HashMap<u64, ObjectMesh>,
+    key: Option<(Vec<(u64, bool)>, DisplaySettings)>,
+    /// The combined geometry for the GPU.
+    pub geometry: Arc<FrameGeometry>,
+    /// The colour scale of a curvature plot (for the legend).
+    pub scale: Option<ColorScale>,
+    /// Per visible object: (object index, first vertex, first index) in `geometry`.
+    pub ranges: Vec<(usize, usize, usize)>,
+}
+
+/// The application.
+pub struct App {
+    /// The open document.
+    pub doc: Document,
+    /// The selection.
+    pub selection: Selection,
+    /// Display settings of the 3D view.
+    pub display: DisplaySettings,
+    /// The 3D camera.
+    pub camera: OrbitCamera,
+    /// The status bar's message.
+    pub status: String,
+    /// An error shown in a window until dismissed.
+    pub error: Option<String>,
+    /// The algorithm panels.
+    pub panels: Vec<Box<dyn Panel>>,
+    /// The drawable geometry.
+    pub cache: GeometryCache,
+    /// Whether the GPU view resources are installed.
+    pub gpu: bool,
+    /// The path typed in the File menu.
+    pub path_text: String,
+    /// The numeric editor's copy of the selected vertex's control triangle.
+    pub vertex_edit: Option<(usize, usize, VertexControl)>,
+    /// The last probed surface point: (object, u, v, curvature).
+    pub probe: Option<crate::view3d::Probe>,
+    /// A control point being dragged: (object, vertex, point index).
+    pub drag: Option<(usize, usize, usize)>,
+    /// Frame the scene at the next draw.
+    pub frame_pending: bool,
+    /// Where autosaves go (None: no autosave).
+    pub autosave: Option<PathBuf>,
+    last_autosave: f64,
+}
+
+impl App {
+    /// An application showing `scene`.
+    pub fn new(scene: Scene, path: Option<PathBuf>) -> Self {
+        let selection = Selection {
+            object: (!scene.objects.is_empty()).then_some(0),
+            vertex: None,
+        };
+        App {
+            path_text: path
+                .as_ref()
+                .map(|p| p.display().to_string())
+                .unwrap_or_default(),
+            doc: Document::new(scene, path),
+            selection,
+            display: DisplaySettings::default(),
+            camera: OrbitCamera::default(),
+            status: String::new(),
+            error: None,
+            panels: default_panels(),
+            cache: GeometryCache::default(),
+            gpu: false,
+            vertex_edit: None,
+            probe: None,
+            drag: None,
+            frame_pending: true,
+            autosave: None,
+            last_autosave: 0.0,
+        }
+    }
+
+    /// The built-in demo: a curvature-coloured UPS patch and a NURPS paraboloid.
+    pub fn demo() -> Self {
+        let mut app = App::new(crate::demo::scene(), None);
+        app.display.mode = ViewMode::Curvature(CurvatureQuantity::Mean);
+        app.status =
+            "demo scene: a UPS wave patch coloured by mean curvature, and a NURPS paraboloid"
+                .into();
+        app
+    }
+
+    /// Opens a scene or surface file, replacing the document; a bad file leaves the scene
+    /// unchanged and shows the message.
+    pub fn open(&mut self, path: PathBuf) {
+        match Scene::load(&path) {
+            Ok(scene) => {
+                self.selection = Selection {
+                    object: (!scene.objects.is_empty()).then_some(0),
+                    vertex: None,
+                };
+                self.doc = Document::new(scene, Some(path.clone()));
+                self.path_text = path.display().to_string();
+                self.status = format!("opened {}", path.display());
+                self.frame_pending = true;
+            }
+            Err(e) => self.error = Some(format!("Could not open the file.\n\n{e}")),
+        }
+    }
+
+    /// Saves to `path` (atomically).
+    pub fn save(&mut self, path: PathBuf) {
+        match self.doc.scene.save(&path) {
+            Ok(()) => {
+                self.status = format!("saved {}", path.display());
+                self.doc.path = Some(path);
+                self.doc.dirty = false;
+            }
+            Err(e) => self.error = Some(format!("Could not save.\n\n{e}")),
+        }
+    }
+
+    /// Undoes the last edit.
+    pub fn undo(&mut self) {
+        if let Some(name) = self.doc.undo_name().map(str::to_owned) {
+            self.doc.undo();
+            self.status = format!("undid {name}");
+            self.after_history();
+        }
+    }
+
+    /// Redoes the last undone edit.
+    pub fn redo(&mut self) {
+        if let Some(name) = self.doc.redo_name().map(str::to_owned) {
+            self.doc.redo();
+            self.status = format!("redid {name}");
+            self.after_history();
+        }
+    }
+
+    fn after_history(&mut self) {
+        self.vertex_edit = None;
+        let n = self.doc.scene.objects.len();
+        if self.selection.object.is_some_and(|i| i >= n) {
+            self.selection = Selection::default();
+        }
+        if let Some(i) = self.selection.object
+            && self
+                .selection
+                .vertex
+                .is_some_and(|v| v >= edit::vertex_count(&self.doc.scene.objects[i].surface))
+        {
+            self.selection.vertex = None;
+        }
+    }
+
+    /// Sets the selected vertex's control triangle as one undoable edit.
+    pub fn set_vertex(
+        &mut self,
+        object: usize,
+        vertex: usize,
+        c: VertexControl,
+    ) -> Result<(), String> {
+        self.doc.edit("edit control points", |scene| {
+            let o = &mut scene.objects[object];
+            edit::set_vertex_control(&mut o.surface, vertex, &c)?;
+            o.touch();
+            Ok(())
+        })
+    }
+
+    /// Rebuilds the geometry if the scene or the display settings changed.
+    pub fn update_geometry(&mut self) {
+        let key: Vec<(u64, bool)> = self
+            .doc
+            .scene
+            .objects
+            .iter()
+            .map(|o| (o.revision, o.visible))
+            .collect();
+        let current = Some((key.clone(), self.display.clone()));
+        if self.cache.key == current {
+            return;
+        }
+        let sampling_changed = self.cache.key.as_ref().is_none_or(|(_, d)| {
+            d.level != self.display.level
+                || d.overlays != self.display.overlays
+                || matches!(d.mode, ViewMode::Curvature(_))
+                    != matches!(self.display.mode, ViewMode::Curvature(_))
+                || d.mode != self.display.mode
+        });
+        if sampling_changed {
+            self.cache.meshes.clear();
+        }
+        let live: std::collections::HashSet<u64> = key.iter().map(|k| k.0).collect();
+        self.cache.meshes.retain(|r, _| live.contains(r));
+        for o in self.doc.scene.objects.iter().filter(|o| o.visible) {
+            if !self.cache.meshes.contains_key(&o.revision) {
+                self.cache
+                    .meshes
+                    .insert(o.revision, display::object_mesh(o, &self.display));
+            }
+        }
+        let visible: Vec<(usize, u64)> = self
+            .doc
+            .scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.visible)
+            .map(|(i, o)| (i, o.revision))
+            .collect();
+        let diameter = display::bounds(self.cache.meshes.values())
+            .map(|(lo, hi)| (hi - lo).norm() as f64)
+            .unwrap_or(1.0)
+            .max(1e-12);
+        {
+            let mut meshes: Vec<&mut ObjectMesh> = self.cache.meshes.values_mut().collect();
+            self.cache.scale = display::colorize(&mut meshes, &self.display, diameter);
+        }
+        let mut g = FrameGeometry {
+            generation: crate::scene::fresh_revision(),
+            ..Default::default()
+        };
+        self.cache.ranges.clear();
+        for (i, r) in visible {
+            let m = &self.cache.meshes[&r];
+            let base = g.vertices.len() as u32;
+            self.cache
+                .ranges
+                .push((i, g.vertices.len(), g.indices.len()));
+            g.vertices.extend_from_slice(&m.vertices);
+            g.indices.extend(m.indices.iter().map(|k| k + base));
+            g.lines.extend_from_slice(&m.lines);
+        }
+        self.cache.geometry = Arc::new(g);
+        self.cache.key = current;
+    }
+
+    /// The cached mesh of an object (after [`App::update_geometry`]).
+    pub fn object_mesh(&self, i: usize) -> Option<&ObjectMesh> {
+        self.doc
+            .scene
+            .objects
+            .get(i)
+            .and_then(|o| self.cache.meshes.get(&o.revision))
+    }
+
+    /// The cached mesh of an object with a given revision.
+    pub fn cache_mesh(&self, _i: usize, revision: u64) -> Option<&ObjectMesh> {
+        self.cache.meshes.get(&revision)
+    }
+
+    /// Fits the camera to the visible objects in a view of the given aspect ratio.
+    pub fn frame_all(&mut self, aspect: f32) {
+        self.update_geometry();
+        let sel: Vec<&ObjectMesh> = match self.selection.object {
+            Some(i) if !self.frame_pending => self.object_mesh(i).into_iter().collect(),
+            _ => self.cache.meshes.values().collect(),
+        };
+        if let Some((lo, hi)) = display::bounds(sel) {
+            self.camera.frame(lo, hi, aspect);
+        }
+        self.frame_pending = false;
+    }
+
+    /// Draws the whole application.
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        self.shortcuts(ui.ctx());
+        self.autosave_tick(ui.ctx());
+        egui::Panel::top("menu").show(ui, |ui| self.menu_bar(ui));
+        egui::Panel::bottom("status").show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.label(&self.status);
+                if let Some(p) = &self.probe {
+                    ui.separator();
+                    ui.monospace(p.summary());
+                }
+            });
+        });
+        egui::Panel::left("scene")
+            .resizable(true)
+            .default_size(250.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    crate::scene_tree::ui(self, ui);
+                    ui.separator();
+                    crate::properties::ui(self, ui);
+                });
+            });
+        egui::Panel::right("tools")
+            .resizable(true)
+            .default_size(320.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    ui.heading("Domain");
+                    crate::domain_view::ui(self, ui);
+                    ui.separator();
+                    crate::properties::display_ui(self, ui);
+                    let mut panels = std::mem::take(&mut self.panels);
+                    for p in &mut panels {
+                        egui::CollapsingHeader::new(p.title())
+                            .default_open(false)
+                            .show(ui, |ui| {
+                                let mut cx = PanelContext {
+                                    doc: &mut self.doc,
+                                    selected: self.selection.object,
+                                    status: &mut self.status,
+                                };
+                                p.ui(ui, &mut cx);
+                            });
+                    }
+                    self.panels = panels;
+                });
+            });
+        egui::CentralPanel::no_frame().show(ui, |ui| crate::view3d::ui(self, ui));
+        self.error_window(ui.ctx());
+    }
+
+    fn menu_bar(&mut self, ui: &mut egui::Ui) {
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| {
+                let label = ui.label("File (scene or surface .json):");
+                ui.text_edit_singleline(&mut self.path_text)
+                    .labelled_by(label.id)
+                    .on_hover_text("Type a path, then Open or Save");
+                ui.horizontal(|ui| {
+                    if ui.button("Open").clicked() {
+                        self.open(PathBuf::from(self.path_text.trim()));
+                    }
+                    if ui.button("Save").clicked() {
+                        self.save(PathBuf::from(self.path_text.trim()));
+                    }
+                });
+                if let Some(p) = self.autosave.clone().filter(|p| p.exists())
+                    && ui
+                        .button("Recover autosave")
+                        .on_hover_text(p.display().to_string())
+                        .clicked()
+                {
+                    self.open(p);
+                    self.doc.path = None;
+                }
+                ui.separator();
+                if ui
+                    .button("Export mesh (PLY) of the selected object")
+                    .clicked()
+                {
+                    self.export_selected();
+                }
+            });
+            ui.menu_button("Edit", |ui| {
+                let undo = self.doc.undo_name().map(|n| format!("Undo {n}"));
+                if ui
+                    .add_enabled(
+                        undo.is_some(),
+                        egui::Button::new(undo.unwrap_or("Undo".into())).shortcut_text("Ctrl+Z"),
+                    )
+                    .clicked()
+                {
+                    self.undo();
+                }
+                let redo = self.doc.redo_name().map(|n| format!("Redo {n}"));
+                if ui
+                    .add_enabled(
+                        redo.is_some(),
+                        egui::Button::new(redo.unwrap_or("Redo".into()))
+                            .shortcut_text("Ctrl+Shift+Z"),
+                    )
+                    .clicked()
+                {
+                    self.redo();
+                }
+            });
+            ui.menu_button("View", |ui| {
+                if ui.button("Frame all (F)").clicked() {
+                    self.frame_pending = true;
+                }
+                ui.checkbox(&mut self.display.flat, "Flat shading");
+            });
+        });
+    }
+
+    fn export_selected(&mut self) {
+        let Some(i) = self.selection.object else {
+            self.status = "select an object to export".into();
+            return;
+        };
+        let o = &self.doc.scene.objects[i];
+        let stem = self
+            .doc
+            .path
+            .as_ref()
+            .and_then(|p| p.parent())
+            .map(PathBuf::from)
+            .unwrap_or_else(|| PathBuf::from("."));
+        let path = stem.join(format!(
+            "{}.ply",
+            o.name.replace(|c: char| !c.is_alphanumeric(), "_")
+        ));
+        let sampled =
+            pssurf::interrogate::sample_patches(o.surface.general(), self.display.level, true);
+        let fields: Vec<(String, Vec<f64>)> = CurvatureQuantity::ALL
+            .iter()
+            .map(|q| (q.short_name().to_string(), sampled.quantity(*q)))
+            .collect();
+        let mesh = pssurf_viz::FieldMesh {
+            mesh: &sampled.mesh,
+            fields: &fields,
+            colors: None,
+        };
+        let r = pssurf::io::atomic_write(&path, pssurf::io::Durability::Atomic, |w| {
+            pssurf_viz::write_mesh(w, pssurf_viz::MeshFormat::Ply, &mesh)
+                .map_err(std::io::Error::other)
+        });
+        match r {
+            Ok(()) => self.status = format!("wrote {}", path.display()),
+            Err(e) => self.error = Some(format!("Could not export.\n\n{e}")),
+        }
+    }
+
+    fn shortcuts(&mut self, ctx: &egui::Context) {
+        if ctx.egui_wants_keyboard_input() {
+            return;
+        }
+        let (undo, redo, frame) = ctx.input_mut(|i| {
+            let redo = i.consume_key(
+                egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+                egui::Key::Z,
+            ) || i.consume_key(egui::Modifiers::COMMAND, egui::Key::Y);
+            let undo = i.consume_key(egui::Modifiers::COMMAND, egui::Key::Z);
+            let frame = i.consume_key(egui::Modifiers::NONE, egui::Key::F);
+            (undo, redo, frame)
+        });
+        if redo {
+            self.redo();
+        } else if undo {
+            self.undo();
+        }
+        if frame {
+            self.frame_pending = true;
+        }
+    }
+
+    fn autosave_tick(&mut self, ctx: &egui::Context) {
+        let now = ctx.input(|i| i.time);
+        if let Some(path) = &self.autosave
+            && self.doc.dirty
+            && now - self.last_autosave > 60.0
+        {
+            self.last_autosave = now;
+            if let Some(dir) = path.parent() {
+                let _ = std::fs::create_dir_all(dir);
+            }
+            if let Err(e) = self.doc.scene.save(path) {
+                self.status = format!("autosave failed: {e}");
+            }
+        }
+    }
+
+    fn error_window(&mut self, ctx: &egui::Context) {
+        let Some(msg) = self.error.clone() else {
+            return;
+        };
+        egui::Window::new("Problem")
+            .collapsible(false)
+            .resizable(false)
+            .show(ctx, |ui| {
+                ui.label(msg);
+                if ui.button("OK").clicked() {
+                    self.error = None;
+                }
+            });
+    }
+
+    /// The range setting as text for the UI.
+    pub fn range_text(&self) -> String {
+        match self.display.range {
+            Range::Auto => "auto".into(),
+            Range::Fixed(a, b) => format!("{a},{b}"),
+            Range::Contrast(c) => format!("contrast {c}"),
+        }
+    }
+}
+
+impl eframe::App for App {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        App::ui(self, ui);
+    }
+}

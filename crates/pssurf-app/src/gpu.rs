@@ -1,0 +1,562 @@
+//! The GPU side of the 3D view: surfaces and overlay lines are drawn into an offscreen
+//! colour + depth target (so the view has its own depth buffer whatever egui's pass has),
+//! which an `egui_wgpu` paint callback then composites into the UI. The same renderer draws
+//! headless pictures.
+
+use std::sync::Arc;
+
+use eframe::egui_wgpu::{self, wgpu};
+use wgpu::util::DeviceExt;
+
+use crate::display::{GpuVertex, LineVertex};
+
+/// The offscreen colour format (gamma-space colours, as egui uses).
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// The offscreen depth format.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The view's background colour.
+pub const BACKGROUND: [f64; 3] = [0.965, 0.968, 0.975];
+
+/// The shader uniforms (see `view.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Uniforms {
+    /// Projection × view.
+    pub view_proj: [[f32; 4]; 4],
+    /// Eye position; w = 1 for perspective.
+    pub eye: [f32; 4],
+    /// Direction to the eye.
+    pub to_eye: [f32; 4],
+    /// Direction to the light.
+    pub light: [f32; 4],
+    /// Zebra axis.
+    pub axis: [f32; 4],
+    /// Mode, band width (rad), flat, lit.
+    pub params: [f32; 4],
+}
+
+/// The geometry of one frame, shared with the paint callback; `generation` changes whenever
+/// the content does, so that it is uploaded only then.
+#[derive(Debug, Default)]
+pub struct FrameGeometry {
+    /// Identifies the content.
+    pub generation: u64,
+    /// Surface vertices of all visible objects.
+    pub vertices: Vec<GpuVertex>,
+    /// Their triangles.
+    pub indices: Vec<u32>,
+    /// Overlay segments.
+    pub lines: Vec<LineVertex>,
+}
+
+struct Buffers {
+    generation: u64,
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    lines: wgpu::Buffer,
+    line_count: u32,
+}
+
+struct Target {
+    size: [u32; 2],
+    color: wgpu::Texture,
+    color_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+}
+
+/// Draws frames into its offscreen target.
+pub struct ViewRenderer {
+    surface: wgpu::RenderPipeline,
+    lines: wgpu::RenderPipeline,
+    uniforms: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    buffers: Option<Buffers>,
+    target: Option<Target>,
+    /// Bumped whenever the target texture is recreated.
+    pub target_generation: u64,
+}
+
+impl ViewRenderer {
+    /// Compiles the pipelines.
+    pub fn new(device: &wgpu::Device) -> Self {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("pssurf view"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("view.wgsl").into()),
+        });
+        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pssurf view uniforms"),
+            size: std::mem::size_of::<Uniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("pssurf view uniforms"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("pssurf view uniforms"),
+            layout: &layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniforms.as_entire_binding(),
+            }],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("pssurf view"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let surface_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4];
+        let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Unorm8x4];
+        let pipeline =
+            |vs: &str, fs: &str, topology, attrs: &[wgpu::VertexAttribute], stride: usize| {
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some(vs),
+                    layout: Some(&pipeline_layout),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some(vs),
+                        buffers: &[Some(wgpu::VertexBufferLayout {
+                            array_stride: stride as u64,
+                            step_mode: wgpu::VertexStepMode::Vertex,
+                            attributes: attrs,
+                        })],
+                        compilation_options: Default::default(),
+                    },
+                    primitive: wgpu::PrimitiveState {
+                        topology,
+                        cull_mode: None,
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: DEPTH_FORMAT,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some(fs),
+                        targets: &[Some(wgpu::ColorTargetState {
+                            format: COLOR_FORMAT,
+                            blend: None,
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })],
+                        compilation_options: Default::default(),
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+            };
+        let surface = pipeline(
+            "vs_surface",
+            "fs_surface",
+            wgpu::PrimitiveTopology::TriangleList,
+            &surface_attrs,
+            std::mem::size_of::<GpuVertex>(),
+        );
+        let lines = pipeline(
+            "vs_line",
+            "fs_line",
+            wgpu::PrimitiveTopology::LineList,
+            &line_attrs,
+            std::mem::size_of::<LineVertex>(),
+        );
+        ViewRenderer {
+            surface,
+            lines,
+            uniforms,
+            bind_group,
+            buffers: None,
+            target: None,
+            target_generation: 0,
+        }
+    }
+
+    /// Uploads the geometry if it changed since the last upload.
+    pub fn upload(&mut self, device: &wgpu::Device, g: &FrameGeometry) {
+        if self
+            .buffers
+            .as_ref()
+            .is_some_and(|b| b.generation == g.generation)
+        {
+            return;
+        }
+        let make = |label, contents: &[u8], usage| {
+            // Empty buffers are not allowed: keep at least one element's room.
+            let padded;
+            let contents = if contents.is_empty() {
+                padded = vec![0u8; 64];
+                &padded[..]
+            } else {
+                contents
+            };
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        self.buffers = Some(Buffers {
+            generation: g.generation,
+            vertices: make(
+                "pssurf vertices",
+                bytemuck::cast_slice(&g.vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: make(
+                "pssurf indices",
+                bytemuck::cast_slice(&g.indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            index_count: g.indices.len() as u32,
+            lines: make(
+                "pssurf lines",
+                bytemuck::cast_slice(&g.lines),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            line_count: g.lines.len() as u32,
+        });
+    }
+
+    fn ensure_target(&mut self, device: &wgpu::Device, size: [u32; 2]) {
+        let size = [size[0].max(1), size[1].max(1)];
+        if self.target.as_ref().is_some_and(|t| t.size == size) {
+            return;
+        }
+        let texture = |format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("pssurf view target"),
+                size: wgpu::Extent3d {
+                    width: size[0],
+                    height: size[1],
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let color = texture(
+            COLOR_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+        );
+        let depth = texture(DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        self.target = Some(Target {
+            size,
+            color_view: color.create_view(&Default::default()),
+            color,
+            depth_view: depth.create_view(&Default::default()),
+        });
+        self.target_generation += 1;
+    }
+
+    /// Draws the uploaded geometry into the offscreen target of `size` pixels.
+    pub fn render(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        size: [u32; 2],
+        uniforms: &Uniforms,
+    ) {
+        self.ensure_target(device, size);
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(uniforms));
+        let target = self.target.as_ref().expect("just made");
+        let [r, g, b] = BACKGROUND;
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("pssurf view"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &target.color_view,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                    store: wgpu::StoreOp::Store,
+                },
+                depth_slice: None,
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &target.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            ..Default::default()
+        });
+        let Some(b) = &self.buffers else {
+            return;
+        };
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        if b.index_count > 0 {
+            pass.set_pipeline(&self.surface);
+            pass.set_vertex_buffer(0, b.vertices.slice(..));
+            pass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..b.index_count, 0, 0..1);
+        }
+        if b.line_count > 0 {
+            pass.set_pipeline(&self.lines);
+            pass.set_vertex_buffer(0, b.lines.slice(..));
+            pass.draw(0..b.line_count, 0..1);
+        }
+    }
+
+    /// The offscreen colour texture (after a render).
+    pub fn color_texture(&self) -> Option<&wgpu::Texture> {
+        self.target.as_ref().map(|t| &t.color)
+    }
+
+    fn color_view(&self) -> Option<&wgpu::TextureView> {
+        self.target.as_ref().map(|t| &t.color_view)
+    }
+}
+
+/// Draws the offscreen target into egui's pass.
+pub struct Compositor {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
+    bind_group: Option<(u64, wgpu::BindGroup)>,
+}
+
+impl Compositor {
+    /// A compositor for egui's target format.
+    pub fn new(device: &wgpu::Device, target_format: wgpu::TextureFormat) -> Self {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("pssurf composite"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("composite.wgsl").into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("pssurf composite"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        multisampled: false,
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("pssurf composite"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("pssurf composite"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_full"),
+                buffers: &[],
+                compilation_options: Default::default(),
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some(if target_format.is_srgb() {
+                    "fs_full_linear"
+                } else {
+                    "fs_full_gamma"
+                }),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: target_format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+                compilation_options: Default::default(),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor::default());
+        Compositor {
+            pipeline,
+            layout,
+            sampler,
+            bind_group: None,
+        }
+    }
+
+    fn update(&mut self, device: &wgpu::Device, renderer: &ViewRenderer) {
+        let generation = renderer.target_generation;
+        if self
+            .bind_group
+            .as_ref()
+            .is_some_and(|(g, _)| *g == generation)
+        {
+            return;
+        }
+        let Some(view) = renderer.color_view() else {
+            return;
+        };
+        let bg = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("pssurf composite"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+            ],
+        });
+        self.bind_group = Some((generation, bg));
+    }
+}
+
+/// What the paint callback needs, kept in egui_wgpu's callback resources.
+pub struct ViewResources {
+    /// The offscreen renderer.
+    pub renderer: ViewRenderer,
+    /// The composite into egui.
+    pub compositor: Compositor,
+}
+
+impl ViewResources {
+    /// Registers the resources with an egui_wgpu render state (call once at start-up).
+    pub fn install(state: &egui_wgpu::RenderState) {
+        let resources = ViewResources {
+            renderer: ViewRenderer::new(&state.device),
+            compositor: Compositor::new(&state.device, state.target_format),
+        };
+        state.renderer.write().callback_resources.insert(resources);
+    }
+}
+
+/// The per-frame paint callback of the 3D view.
+pub struct ViewCallback {
+    /// The geometry to draw.
+    pub geometry: Arc<FrameGeometry>,
+    /// Camera, light and mode.
+    pub uniforms: Uniforms,
+    /// The view's size in pixels.
+    pub size: [u32; 2],
+}
+
+impl egui_wgpu::CallbackTrait for ViewCallback {
+    fn prepare(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        _screen: &egui_wgpu::ScreenDescriptor,
+        encoder: &mut wgpu::CommandEncoder,
+        resources: &mut egui_wgpu::CallbackResources,
+    ) -> Vec<wgpu::CommandBuffer> {
+        if let Some(r) = resources.get_mut::<ViewResources>() {
+            r.renderer.upload(device, &self.geometry);
+            r.renderer
+                .render(device, queue, encoder, self.size, &self.uniforms);
+            r.compositor.update(device, &r.renderer);
+        }
+        Vec::new()
+    }
+
+    fn paint(
+        &self,
+        _info: eframe::egui::PaintCallbackInfo,
+        pass: &mut wgpu::RenderPass<'static>,
+        resources: &egui_wgpu::CallbackResources,
+    ) {
+        let Some(r) = resources.get::<ViewResources>() else {
+            return;
+        };
+        let Some((_, bg)) = &r.compositor.bind_group else {
+            return;
+        };
+        pass.set_pipeline(&r.compositor.pipeline);
+        pass.set_bind_group(0, bg, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}
+
+/// Reads a texture (RGBA8) back into an image.
+pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<image::RgbaImage, String> {
+    let (w, h) = (texture.width(), texture.height());
+    let row = 4 * w as usize;
+    let align = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as usize;
+    let padded = row.div_ceil(align) * align;
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("pssurf readback"),
+        size: (padded * h as usize) as u64,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded as u32),
+                rows_per_image: None,
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    let index = queue.submit([encoder.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, move |r| drop(tx.send(r)));
+    device
+        .poll(wgpu::PollType::Wait {
+            submission_index: Some(index),
+            timeout: Some(std::time::Duration::from_secs(30)),
+        })
+        .map_err(|e| format!("waiting for the GPU: {e}"))?;
+    rx.recv()
+        .map_err(|e| e.to_string())?
+        .map_err(|e| e.to_string())?;
+    let data = buffer
+        .slice(..)
+        .get_mapped_range()
+        .map_err(|e| e.to_string())?;
+    let pixels: Vec<u8> = data
+        .chunks_exact(padded)
+        .flat_map(|r| r[..row].iter().copied())
+        .collect();
+    image::RgbaImage::from_raw(w, h, pixels).ok_or_else(|| "readback size mismatch".to_string())
+}

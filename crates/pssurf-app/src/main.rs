@@ -1,0 +1,83 @@
+//! `pssurf-app [FILE...]`: the interactive application; `--screenshot OUT.png` renders one
+//! picture without a window and exits.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Parser;
+use pssurf_app::App;
+use pssurf_app::scene::Scene;
+
+/// The pssurf modeller: open PS, UPS and NURPS surfaces (or scenes) and interrogate them.
+#[derive(Parser, Debug)]
+#[command(version, about)]
+struct Args {
+    /// Scene or surface files to open (none: the built-in demo scene).
+    files: Vec<PathBuf>,
+    /// Render the scene once to this PNG file and exit (needs no display; uses wgpu, e.g.
+    /// Mesa's software Vulkan).
+    #[arg(long, value_name = "OUT.png")]
+    screenshot: Option<PathBuf>,
+    /// Window or screenshot size.
+    #[arg(long, value_name = "WxH", default_value = "1400x900")]
+    size: String,
+}
+
+fn parse_size(s: &str) -> Result<(f32, f32)> {
+    let (w, h) = s
+        .split_once('x')
+        .context("--size must look like 1400x900")?;
+    let (w, h): (f32, f32) = (w.trim().parse()?, h.trim().parse()?);
+    if !(w >= 200.0 && h >= 150.0 && w <= 8192.0 && h <= 8192.0) {
+        bail!("--size must be between 200x150 and 8192x8192");
+    }
+    Ok((w, h))
+}
+
+fn load(files: &[PathBuf]) -> Result<App> {
+    if files.is_empty() {
+        return Ok(App::demo());
+    }
+    let mut scene = Scene::default();
+    for f in files {
+        let s = Scene::load(f)?;
+        scene.objects.extend(s.objects);
+    }
+    let path = (files.len() == 1).then(|| files[0].clone());
+    Ok(App::new(scene, path))
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let (w, h) = parse_size(&args.size)?;
+    let mut app = load(&args.files)?;
+    if let Some(out) = args.screenshot {
+        let picture = pssurf_app::headless::screenshot(app, w, h).map_err(anyhow::Error::msg)?;
+        let mut png = Vec::new();
+        picture.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)?;
+        pssurf::io::atomic_write_bytes(&out, pssurf::io::Durability::Atomic, &png)?;
+        eprintln!("wrote {}", out.display());
+        return Ok(());
+    }
+    app.autosave =
+        std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache/pssurf-app/autosave.json"));
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_inner_size([w, h])
+            .with_title("pssurf"),
+        renderer: eframe::Renderer::Wgpu,
+        ..Default::default()
+    };
+    eframe::run_native(
+        "pssurf",
+        options,
+        Box::new(move |cc| {
+            if let Some(state) = &cc.wgpu_render_state {
+                pssurf_app::gpu::ViewResources::install(state);
+                app.gpu = true;
+            }
+            Ok(Box::new(app))
+        }),
+    )
+    .map_err(|e| anyhow::anyhow!("could not start the window: {e}"))
+}

@@ -1,0 +1,53 @@
+//! Dyadic subdivision of a UPS surface (thesis 4.4): exact, the surface is unchanged.
+
+use super::{Panel, PanelContext, needs_ups};
+use pssurf::surface::Surface;
+
+/// The subdivision dialog.
+#[derive(Debug)]
+pub struct SubdivisionPanel {
+    /// Subdivision steps per click.
+    pub times: usize,
+}
+
+impl Default for SubdivisionPanel {
+    fn default() -> Self {
+        SubdivisionPanel { times: 1 }
+    }
+}
+
+impl Panel for SubdivisionPanel {
+    fn title(&self) -> &'static str {
+        "Subdivision"
+    }
+
+    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut PanelContext<'_>) {
+        let Some(u) = cx.uniform() else {
+            return needs_ups(ui);
+        };
+        let n = u.grid().vertex_count();
+        ui.label(format!(
+            "{n} vertices, {} triangles",
+            u.grid().triangle_count()
+        ));
+        ui.horizontal(|ui| {
+            ui.label("steps");
+            ui.add(egui::DragValue::new(&mut self.times).range(1..=4));
+        });
+        let after = n as f64 * 4f64.powi(self.times as i32);
+        let button = ui
+            .button("Subdivide")
+            .on_hover_text("Refine the triangulation; the surface stays the same");
+        if after > 4e6 {
+            ui.colored_label(
+                egui::Color32::DARK_RED,
+                "That would make more than 4 million vertices.",
+            );
+        } else if button.clicked() {
+            let s = u.subdivide_times(self.times);
+            let vertices = s.grid().vertex_count();
+            cx.replace_surface("subdivide", Surface::from(s));
+            *cx.status = format!("subdivided {} time(s): {vertices} vertices", self.times);
+        }
+    }
+}

@@ -1,0 +1,225 @@
+//! The selected object's properties (name, placement), the numeric editor of the selected
+//! vertex's control triangle (like the thesis' Figure 6.12), and the display settings.
+
+use pssurf::interrogate::CurvatureQuantity;
+use pssurf_viz::colormap::ColorMap;
+use pssurf_viz::plot::Range;
+
+use crate::app::App;
+use crate::display::ViewMode;
+use crate::edit;
+
+/// Draws the properties of the selection.
+pub fn ui(app: &mut App, ui: &mut egui::Ui) {
+    let Some(i) = app
+        .selection
+        .object
+        .filter(|&i| i < app.doc.scene.objects.len())
+    else {
+        ui.weak("Select an object.");
+        return;
+    };
+    ui.heading("Object");
+    let o = &app.doc.scene.objects[i];
+    let (old_name, old_t) = (o.name.clone(), o.transform);
+    let mut name = o.name.clone();
+    let mut t = o.transform;
+    ui.horizontal(|ui| {
+        let label = ui.label("name");
+        ui.text_edit_singleline(&mut name).labelled_by(label.id);
+    });
+    let n = edit::vertex_count(&o.surface);
+    ui.label(format!(
+        "{} surface, {n} vertices, {} triangles",
+        o.surface.kind_name(),
+        o.surface.general().basis().triangulation().triangle_count()
+    ));
+    egui::Grid::new("transform").num_columns(4).show(ui, |ui| {
+        for (row, values, speed) in [
+            ("move", &mut t.translate, 0.01),
+            ("turn", &mut t.rotate_deg, 0.5),
+        ] {
+            ui.label(row);
+            for (x, axis) in values.iter_mut().zip(["x", "y", "z"]) {
+                let value = *x;
+                let name = format!("{row} {axis}");
+                ui.add(egui::DragValue::new(x).speed(speed))
+                    .widget_info(|| labeled_value(true, value, &name));
+            }
+            ui.end_row();
+        }
+        let label = ui.label("scale");
+        ui.add(
+            egui::DragValue::new(&mut t.scale)
+                .speed(0.01)
+                .range(1e-6..=1e6),
+        )
+        .labelled_by(label.id);
+        ui.end_row();
+    });
+    if name != old_name {
+        let _ = app.doc.edit::<()>("rename", |s| {
+            s.objects[i].name = name;
+            Ok(())
+        });
+    }
+    if t != old_t {
+        let _ = app.doc.edit::<()>("transform", |s| {
+            s.objects[i].transform = t;
+            s.objects[i].touch();
+            Ok(())
+        });
+    }
+    ui.separator();
+    vertex_ui(app, ui, i);
+}
+
+fn vertex_ui(app: &mut App, ui: &mut egui::Ui, i: usize) {
+    ui.heading("Control triangle");
+    let Some(v) = app.selection.vertex else {
+        ui.weak("Click a PS-triangle in the domain view to select its vertex.");
+        return;
+    };
+    let surface = &app.doc.scene.objects[i].surface;
+    if v >= edit::vertex_count(surface) {
+        app.selection.vertex = None;
+        return;
+    }
+    let current = edit::vertex_control(surface, v);
+    // Keep the user's half-typed values while the same vertex stays selected.
+    let mut c = match app.vertex_edit {
+        Some((oi, vi, c)) if oi == i && vi == v => c,
+        _ => current,
+    };
+    ui.label(format!("vertex {v}"));
+    let mut changed = false;
+    egui::Grid::new("control")
+        .num_columns(5)
+        .striped(true)
+        .show(ui, |ui| {
+            ui.strong("");
+            for h in [
+                "x",
+                "y",
+                "z",
+                if c.weights.is_some() { "weight" } else { "" },
+            ] {
+                ui.strong(h);
+            }
+            ui.end_row();
+            for j in 0..3 {
+                ui.label(format!("Q{}", j + 1));
+                for k in 0..3 {
+                    let enabled = !c.functional || k == 2;
+                    let r = ui.add_enabled(
+                        enabled,
+                        egui::DragValue::new(&mut c.points[j][k])
+                            .speed(0.005)
+                            .max_decimals(6),
+                    );
+                    let (name, value) =
+                        (format!("Q{} {}", j + 1, ["x", "y", "z"][k]), c.points[j][k]);
+                    r.widget_info(|| labeled_value(enabled, value, &name));
+                    changed |= r.changed();
+                }
+                if let Some(w) = &mut c.weights {
+                    let r = ui.add(
+                        egui::DragValue::new(&mut w[j])
+                            .speed(0.01)
+                            .range(1e-6..=1e6),
+                    );
+                    let (name, value) = (format!("Q{} weight", j + 1), w[j]);
+                    r.widget_info(|| labeled_value(true, value, &name));
+                    changed |= r.changed();
+                }
+                ui.end_row();
+            }
+        });
+    if c.functional {
+        ui.weak("A functional surface: only the heights of its control points can change.");
+    }
+    if changed && c != current {
+        match app.set_vertex(i, v, c) {
+            Ok(()) => app.vertex_edit = None,
+            Err(e) => {
+                app.status = e;
+                app.vertex_edit = Some((i, v, c));
+            }
+        }
+    }
+}
+
+/// Accessibility info of a number field with a name (so tests and screen readers find it).
+fn labeled_value(enabled: bool, value: f64, name: &str) -> egui::WidgetInfo {
+    let mut info = egui::WidgetInfo::drag_value(enabled, value);
+    info.label = Some(name.to_string());
+    info
+}
+
+/// Draws the display settings of the 3D view.
+pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
+    ui.heading("Display");
+    let d = &mut app.display;
+    egui::ComboBox::from_label("show")
+        .selected_text(mode_name(d.mode))
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut d.mode, ViewMode::Shaded, "shaded");
+            for q in CurvatureQuantity::ALL {
+                ui.selectable_value(
+                    &mut d.mode,
+                    ViewMode::Curvature(q),
+                    mode_name(ViewMode::Curvature(q)),
+                );
+            }
+            ui.selectable_value(&mut d.mode, ViewMode::Zebra, "zebra stripes");
+        });
+    if matches!(d.mode, ViewMode::Curvature(_)) {
+        egui::ComboBox::from_label("colour map")
+            .selected_text(d.colormap.clone())
+            .show_ui(ui, |ui| {
+                for name in ColorMap::NAMES {
+                    ui.selectable_value(&mut d.colormap, name.to_string(), name);
+                }
+            });
+        let mut contrast = matches!(d.range, Range::Contrast(_));
+        ui.horizontal(|ui| {
+            ui.radio_value(&mut contrast, false, "auto range");
+            ui.radio_value(&mut contrast, true, "contrast C");
+            if contrast {
+                let mut c = match d.range {
+                    Range::Contrast(c) => c,
+                    _ => 1.0,
+                };
+                ui.add(egui::DragValue::new(&mut c).speed(0.05).range(1e-6..=1e6));
+                d.range = Range::Contrast(c);
+            } else {
+                d.range = Range::Auto;
+            }
+        });
+    }
+    if d.mode == ViewMode::Zebra {
+        ui.add(egui::Slider::new(&mut d.zebra_width_deg, 1.0..=20.0).text("band width °"));
+    }
+    ui.add(egui::Slider::new(&mut d.level, 0..=5).text("display level"))
+        .on_hover_text("Each PS piece is drawn as 4^level triangles");
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut d.flat, "flat");
+        ui.checkbox(&mut d.overlays.wire, "triangulation");
+        ui.checkbox(&mut d.overlays.refinement, "PS refinement");
+        ui.checkbox(&mut d.overlays.control, "control triangles");
+        ui.checkbox(&mut d.overlays.boundary, "boundary");
+    });
+}
+
+/// The UI name of a view mode.
+pub fn mode_name(m: ViewMode) -> &'static str {
+    match m {
+        ViewMode::Shaded => "shaded",
+        ViewMode::Zebra => "zebra stripes",
+        ViewMode::Curvature(CurvatureQuantity::Gaussian) => "Gaussian curvature K",
+        ViewMode::Curvature(CurvatureQuantity::Mean) => "mean curvature H",
+        ViewMode::Curvature(CurvatureQuantity::K1) => "κ1",
+        ViewMode::Curvature(CurvatureQuantity::K2) => "κ2",
+        ViewMode::Curvature(CurvatureQuantity::Absolute) => "absolute curvature",
+    }
+}

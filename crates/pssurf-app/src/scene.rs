@@ -1,0 +1,238 @@
+//! The scene: named surface objects with visibility and a placement, saved as one JSON file
+//! that embeds each surface in the library's file format (`docs/format.md`).
+
+use std::path::Path;
+
+use nalgebra::{Matrix4, Rotation3, Vector3};
+use pssurf::io::{Durability, atomic_write_bytes};
+use pssurf::surface::Surface;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use thiserror::Error;
+
+/// The scene file's format name and version.
+pub const SCENE_FORMAT: &str = "pssurf-scene";
+/// The scene file version this build reads and writes.
+pub const SCENE_VERSION: u32 = 1;
+
+/// A rigid placement with a uniform scale: p ↦ t + s R p (R from Euler angles in degrees,
+/// applied about x, then y, then z).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Transform {
+    /// Translation.
+    pub translate: [f64; 3],
+    /// Rotation about x, y, z in degrees.
+    pub rotate_deg: [f64; 3],
+    /// Uniform scale (> 0).
+    pub scale: f64,
+}
+
+impl Default for Transform {
+    fn default() -> Self {
+        Transform {
+            translate: [0.0; 3],
+            rotate_deg: [0.0; 3],
+            scale: 1.0,
+        }
+    }
+}
+
+impl Transform {
+    /// The 4 × 4 matrix.
+    pub fn matrix(&self) -> Matrix4<f64> {
+        let [a, b, c] = self.rotate_deg.map(f64::to_radians);
+        let r = Rotation3::from_euler_angles(a, b, c);
+        Matrix4::new_translation(&Vector3::from(self.translate))
+            * r.to_homogeneous()
+            * Matrix4::new_scaling(self.scale)
+    }
+
+    /// Whether this is the identity.
+    pub fn is_identity(&self) -> bool {
+        *self == Transform::default()
+    }
+}
+
+/// One object of the scene.
+#[derive(Clone, Debug)]
+pub struct SceneObject {
+    /// The name shown in the scene tree.
+    pub name: String,
+    /// Whether it is drawn.
+    pub visible: bool,
+    /// Its placement.
+    pub transform: Transform,
+    /// The surface (PS, UPS or NURPS).
+    pub surface: Surface,
+    /// A number that changes whenever the surface or transform changes (display caches key
+    /// on it; it is not saved).
+    pub revision: u64,
+}
+
+/// A fresh revision number, never seen before in this process.
+pub fn fresh_revision() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+}
+
+impl SceneObject {
+    /// A visible object with the identity placement.
+    pub fn new(name: impl Into<String>, surface: Surface) -> Self {
+        SceneObject {
+            name: name.into(),
+            visible: true,
+            transform: Transform::default(),
+            surface,
+            revision: fresh_revision(),
+        }
+    }
+
+    /// Marks the object as changed.
+    pub fn touch(&mut self) {
+        self.revision = fresh_revision();
+    }
+}
+
+/// The objects of a scene.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// The objects in tree order.
+    pub objects: Vec<SceneObject>,
+}
+
+/// A scene file could not be read or written.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    /// Reading or writing failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The file is not a valid scene or surface file.
+    #[error("{path}: {message}")]
+    Invalid {
+        /// The file.
+        path: String,
+        /// What is wrong, and where.
+        message: String,
+    },
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    format: String,
+    version: u32,
+    objects: Vec<ObjectFile>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectFile {
+    name: String,
+    #[serde(default = "yes")]
+    visible: bool,
+    #[serde(default)]
+    transform: Transform,
+    surface: Value,
+}
+
+fn yes() -> bool {
+    true
+}
+
+impl Scene {
+    /// The scene as the JSON text of a scene file.
+    pub fn to_json(&self) -> String {
+        let file = SceneFile {
+            format: SCENE_FORMAT.into(),
+            version: SCENE_VERSION,
+            objects: self
+                .objects
+                .iter()
+                .map(|o| ObjectFile {
+                    name: o.name.clone(),
+                    visible: o.visible,
+                    transform: o.transform,
+                    surface: serde_json::from_str(&pssurf::io::to_json_string(&o.surface))
+                        .expect("the library writes valid JSON"),
+                })
+                .collect(),
+        };
+        serde_json::to_string_pretty(&file).expect("scenes serialise")
+    }
+
+    /// Parses a scene file, or a single surface file (which becomes a one-object scene named
+    /// `name`). Every surface is validated as on loading a surface file.
+    pub fn from_json(text: &str, name: &str) -> Result<Scene, String> {
+        let value: Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+        if value.get("format").and_then(Value::as_str) != Some(SCENE_FORMAT) {
+            let surface = pssurf::io::from_json_str(text).map_err(|e| e.to_string())?;
+            return Ok(Scene {
+                objects: vec![SceneObject::new(name, surface)],
+            });
+        }
+        let file: SceneFile = serde_json::from_value(value).map_err(|e| e.to_string())?;
+        if file.version != SCENE_VERSION {
+            return Err(format!(
+                "scene version {} is not supported (this build reads version {SCENE_VERSION})",
+                file.version
+            ));
+        }
+        let mut objects = Vec::with_capacity(file.objects.len());
+        for (k, o) in file.objects.into_iter().enumerate() {
+            let t = &o.transform;
+            let finite = t
+                .translate
+                .iter()
+                .chain(&t.rotate_deg)
+                .all(|x| x.is_finite());
+            let positive = t.scale > 0.0 && t.scale.is_finite();
+            if !(finite && positive) {
+                return Err(format!(
+                    "object {k} ({}): the transform must be finite with a positive scale",
+                    o.name
+                ));
+            }
+            let surface = pssurf::io::from_json_str(&o.surface.to_string())
+                .map_err(|e| format!("object {k} ({}): {e}", o.name))?;
+            objects.push(SceneObject {
+                name: o.name,
+                visible: o.visible,
+                transform: o.transform,
+                surface,
+                revision: fresh_revision(),
+            });
+        }
+        Ok(Scene { objects })
+    }
+
+    /// Loads a scene or surface file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        Scene::from_json(&text, &name).map_err(|message| SceneError::Invalid {
+            path: path.display().to_string(),
+            message,
+        })
+    }
+
+    /// Saves atomically (a failed write leaves the previous file intact) and durably.
+    pub fn save(&self, path: &Path) -> Result<(), SceneError> {
+        atomic_write_bytes(path, Durability::Durable, self.to_json().as_bytes()).map_err(|source| {
+            SceneError::Io {
+                path: path.display().to_string(),
+                source,
+            }
+        })
+    }
+}

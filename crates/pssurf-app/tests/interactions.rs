@@ -1,0 +1,306 @@
+//! State tests of the application's interactions through its UI (egui_kittest, no GPU).
+
+use egui::{Event, Key, Modifiers, PointerButton, Pos2, vec2};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use nalgebra::Point2;
+use pssurf::surface::ParametricSurface;
+use pssurf_app::App;
+use pssurf_app::display::ViewMode;
+use pssurf_app::domain_view::DomainMap;
+use pssurf_app::edit::vertex_control;
+
+fn harness(app: App) -> Harness<'static, App> {
+    let mut h = Harness::builder()
+        .with_size(vec2(1400.0, 900.0))
+        .build_ui_state(|ui, app: &mut App| app.ui(ui), app);
+    h.run_steps(2);
+    h
+}
+
+fn click(h: &mut Harness<'_, App>, pos: Pos2) {
+    h.event(Event::PointerMoved(pos));
+    h.run_steps(1);
+    h.event(Event::PointerButton {
+        pos,
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(1);
+    h.event(Event::PointerButton {
+        pos,
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(2);
+}
+
+/// The screen position of vertex `v` of the selected object in the domain view.
+fn vertex_on_screen(h: &Harness<'_, App>, v: usize) -> Pos2 {
+    let rect = h.get_by_label("domain view").rect();
+    let app = h.state();
+    let tri = app.doc.scene.objects[app.selection.object.unwrap()]
+        .surface
+        .general()
+        .basis()
+        .triangulation()
+        .clone();
+    let (lo, hi) = tri.bounds();
+    DomainMap::new(lo, hi, rect).to_screen(tri.vertex(v))
+}
+
+fn z_at(app: &App, object: usize, uv: Point2<f64>) -> f64 {
+    let s = app.doc.scene.objects[object].surface.general();
+    s.jet_with(uv, &mut s.cursor_near(uv)).unwrap().jet.value.z
+}
+
+#[test]
+fn clicking_a_ps_triangle_in_the_domain_view_selects_its_vertex() {
+    let mut h = harness(App::demo());
+    assert_eq!(h.state().selection.object, Some(0));
+    assert_eq!(h.state().selection.vertex, None);
+    for v in [0, 7, 20] {
+        let pos = vertex_on_screen(&h, v);
+        click(&mut h, pos);
+        assert_eq!(h.state().selection.vertex, Some(v), "clicked vertex {v}");
+    }
+    // The editor shows the selected vertex's control points.
+    h.get_by_label("Q1 z");
+}
+
+#[test]
+fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
+    let mut h = harness(App::demo());
+    let v = 12;
+    let pos = vertex_on_screen(&h, v);
+    click(&mut h, pos);
+    assert_eq!(h.state().selection.vertex, Some(v));
+    let before = vertex_control(&h.state().doc.scene.objects[0].surface, v);
+    let uv = h.state().doc.scene.objects[0]
+        .surface
+        .general()
+        .basis()
+        .triangulation()
+        .vertex(v);
+    let z_before = z_at(h.state(), 0, uv);
+
+    h.get_by_label("Q2 z")
+        .set_value_accesskit(before.points[1].z + 0.25);
+    h.run_steps(2);
+    let after = vertex_control(&h.state().doc.scene.objects[0].surface, v);
+    assert!((after.points[1].z - (before.points[1].z + 0.25)).abs() < 1e-12);
+    assert_eq!(after.points[0], before.points[0]);
+    let z_after = z_at(h.state(), 0, uv);
+    // s(V_i) is a convex combination of the three control points: it moved up.
+    assert!(z_after > z_before + 1e-6, "{z_before} → {z_after}");
+
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!(
+        vertex_control(&h.state().doc.scene.objects[0].surface, v),
+        before
+    );
+    assert!((z_at(h.state(), 0, uv) - z_before).abs() < 1e-14);
+
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    h.run_steps(2);
+    assert_eq!(
+        vertex_control(&h.state().doc.scene.objects[0].surface, v),
+        after
+    );
+}
+
+#[test]
+fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
+    let mut app = App::demo();
+    app.selection.vertex = Some(5);
+    let mut h = harness(app);
+    let before = vertex_control(&h.state().doc.scene.objects[0].surface, 5);
+    // Find the first control point's handle on the screen.
+    let view = h.get_by_label("3D view").rect();
+    let app = h.state();
+    let p = app.doc.scene.objects[0]
+        .transform
+        .matrix()
+        .transform_point(&nalgebra::Point3::from(before.points[0]));
+    let m = app.camera.view_projection(view.width() / view.height());
+    let c = m * nalgebra::Vector4::new(p.x as f32, p.y as f32, p.z as f32, 1.0);
+    let start = Pos2::new(
+        view.left() + 0.5 * (c.x / c.w + 1.0) * view.width(),
+        view.top() + 0.5 * (1.0 - c.y / c.w) * view.height(),
+    );
+    h.event(Event::PointerMoved(start));
+    h.run_steps(1);
+    h.event(Event::PointerButton {
+        pos: start,
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(1);
+    for k in 1..=10 {
+        h.event(Event::PointerMoved(start + vec2(0.0, -3.0 * k as f32)));
+        h.run_steps(1);
+    }
+    let end = start + vec2(0.0, -30.0);
+    h.event(Event::PointerButton {
+        pos: end,
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(2);
+    let after = vertex_control(&h.state().doc.scene.objects[0].surface, 5);
+    // Dragged upwards on the screen: the point moved along the camera's up direction.
+    let (_, up) = h.state().camera.right_up();
+    let moved = after.points[0] - before.points[0];
+    assert!(
+        moved.norm() > 1e-3,
+        "the point did not move (start {start:?}, view {view:?}, camera {:?}, status {})",
+        h.state().camera,
+        h.state().status
+    );
+    assert!(
+        moved.normalize().dot(&up.cast::<f64>()) > 0.99,
+        "moved {moved:?}, up {up:?}"
+    );
+    assert_eq!(after.points[1], before.points[1]);
+    // The whole drag is one undo step.
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!(
+        vertex_control(&h.state().doc.scene.objects[0].surface, 5),
+        before
+    );
+}
+
+#[test]
+fn the_curvature_plot_toggles_and_colours_the_mesh() {
+    let mut app = App::demo();
+    app.display.mode = ViewMode::Shaded;
+    let mut h = harness(app);
+    assert!(h.state().cache.scale.is_none());
+    h.get_by_label("show").click();
+    h.run_steps(2);
+    h.get_by_label("mean curvature H").click();
+    h.run_steps(3);
+    let app = h.state();
+    assert!(matches!(app.display.mode, ViewMode::Curvature(_)));
+    assert!(
+        app.cache.scale.is_some(),
+        "a curvature plot has a colour scale for its legend"
+    );
+    let colours: std::collections::HashSet<[u8; 4]> = app
+        .cache
+        .geometry
+        .vertices
+        .iter()
+        .map(|v| v.color)
+        .collect();
+    assert!(colours.len() > 20, "only {} colours", colours.len());
+}
+
+#[test]
+fn a_wavelet_step_from_the_panel_thresholds_and_can_be_undone() {
+    let mut app = App::demo();
+    // Subdivide first so that there is a level to decompose.
+    let mut h = harness(app);
+    h.get_by_label("Subdivision").click();
+    h.run_steps(2);
+    h.get_by_label("Subdivide").click();
+    h.run_steps(2);
+    let n = h.state().doc.scene.objects[0]
+        .surface
+        .uniform()
+        .unwrap()
+        .grid()
+        .vertex_count();
+    assert!(n > 61, "subdivided: {n} vertices");
+    let smooth = h.state().doc.scene.objects[0].surface.clone();
+    h.get_by_label("Noise").click();
+    h.run_steps(2);
+    h.get_by_label("Add noise").click();
+    h.run_steps(2);
+    h.get_by_label("Wavelets").click();
+    h.run_steps(2);
+    h.get_by_label("Threshold").click();
+    h.run_steps(2);
+    assert!(
+        h.state().status.contains("set"),
+        "status: {}",
+        h.state().status
+    );
+    let denoised = vertex_control(&h.state().doc.scene.objects[0].surface, 10);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    let noisy = vertex_control(&h.state().doc.scene.objects[0].surface, 10);
+    assert_ne!(denoised, noisy);
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!(
+        vertex_control(&h.state().doc.scene.objects[0].surface, 10),
+        vertex_control(&smooth, 10)
+    );
+    app = h.into_state();
+    assert_eq!(app.doc.undo_name(), Some("subdivide"));
+}
+
+#[test]
+fn saving_and_reopening_a_scene_gives_the_same_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.json");
+    let mut app = App::demo();
+    app.doc.scene.objects[1].name = "bowl".into();
+    app.save(path.clone());
+    assert!(app.error.is_none(), "{:?}", app.error);
+    let mut other = App::new(Default::default(), None);
+    other.open(path.clone());
+    assert!(other.error.is_none(), "{:?}", other.error);
+    assert_eq!(other.doc.scene.to_json(), app.doc.scene.to_json());
+    assert_eq!(other.doc.scene.objects[1].name, "bowl");
+    assert_eq!(
+        other.doc.scene.objects[1].transform,
+        app.doc.scene.objects[1].transform
+    );
+}
+
+#[test]
+fn opening_a_bad_file_shows_a_message_and_keeps_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = harness(App::demo());
+    let before = h.state().doc.scene.to_json();
+    for (name, text) in [
+        (
+            "truncated.json",
+            "{\"format\": \"pssurf-scene\", \"version\": 1, \"objects\": [",
+        ),
+        (
+            "nan.json",
+            "{\"format\": \"pssurf-scene\", \"version\": 1, \"objects\": [{\"name\": \"a\", \"surface\": {\"format\": \"pssurf\", \"version\": 1, \"kind\": \"functional\", \"vertices\": [[0,0],[1,0],[0,1]], \"triangles\": [[0,1,2]], \"coefficients\": [[NaN,0,0],[0,0,0],[0,0,0]]}}]}",
+        ),
+        (
+            "version.json",
+            "{\"format\": \"pssurf-scene\", \"version\": 99, \"objects\": []}",
+        ),
+        ("missing.json", ""),
+    ] {
+        let path = dir.path().join(name);
+        if !text.is_empty() {
+            std::fs::write(&path, text).unwrap();
+        }
+        h.state_mut().open(path);
+        h.run_steps(2);
+        assert!(h.state().error.is_some(), "{name}: no message");
+        h.get_by_label("Problem");
+        h.get_by_label("OK").click();
+        h.run_steps(2);
+        assert!(h.state().error.is_none());
+        assert_eq!(
+            h.state().doc.scene.to_json(),
+            before,
+            "{name}: the scene changed"
+        );
+    }
+}
