@@ -75,6 +75,8 @@ enum Command {
     /// The main demonstration: noise on a UPS surface, removed by wavelet thresholding, and
     /// compared by curvature plots and numbers in a gallery (DIR/index.html).
     Showcase(commands::showcase::ShowcaseArgs),
+    /// Open surfaces or a scene in the interactive application (pssurf-app).
+    View(commands::view::ViewArgs),
 }
 
 fn main() -> ExitCode {
@@ -94,6 +96,7 @@ fn main() -> ExitCode {
         Command::Fairness(a) => commands::fairness::run(a),
         Command::Export(a) => commands::export::run(a),
         Command::Showcase(a) => commands::showcase::run(a),
+        Command::View(a) => commands::view::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

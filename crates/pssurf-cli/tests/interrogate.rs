@@ -343,3 +343,12 @@ fn showcase_makes_the_gallery() {
     // Six surfaces × four pictures, three of the basis function, two domain pictures.
     assert_eq!(count, 6 * 4 + 3 + 2);
 }
+
+#[test]
+fn view_names_a_missing_file_instead_of_starting_the_application() {
+    let err = fails(&["view", "no/such/surface.json"]);
+    assert!(
+        err.contains("no/such/surface.json") && err.contains("no such file"),
+        "{err}"
+    );
+}

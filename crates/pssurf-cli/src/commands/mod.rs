@@ -14,4 +14,5 @@ pub mod plot;
 pub mod showcase;
 pub mod subdivide;
 pub mod uniform;
+pub mod view;
 pub mod wavelet;
