@@ -30,6 +30,17 @@ pub fn atomic_write<E: From<std::io::Error>>(
         .prefix(".pssurf-")
         .suffix(".tmp")
         .tempfile_in(dir)?;
+    // Temporary files are private (0600); the result should have the permissions of the
+    // file it replaces, or the usual 0644 for a new file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(path)
+            .map(|m| m.permissions().mode() & 0o7777)
+            .unwrap_or(0o644);
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(mode))?;
+    }
     {
         let mut w = BufWriter::with_capacity(1 << 20, tmp.as_file());
         fill(&mut w)?;
@@ -49,4 +60,23 @@ pub fn atomic_write_bytes(
     bytes: &[u8],
 ) -> std::io::Result<()> {
     atomic_write(path, durability, |w| w.write_all(bytes))
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+    use std::os::unix::fs::PermissionsExt;
+
+    #[test]
+    fn new_files_are_readable_and_replaced_files_keep_their_permissions() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.txt");
+        atomic_write_bytes(&path, Durability::Atomic, b"one").unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o7777;
+        assert_eq!(mode(&path), 0o644);
+        std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o640)).unwrap();
+        atomic_write_bytes(&path, Durability::Durable, b"two").unwrap();
+        assert_eq!(mode(&path), 0o640);
+        assert_eq!(std::fs::read(&path).unwrap(), b"two");
+    }
 }
