@@ -118,6 +118,18 @@ pub struct PointArgs {
     pub grid: Option<GridSize>,
 }
 
+/// The output options shared by commands that write one row per point.
+#[derive(clap::Args, Clone, Debug)]
+pub struct TableOutputArgs {
+    /// Output file: `.npy` (float64 array) or anything else for CSV; standard output (CSV)
+    /// when absent.
+    #[arg(short, long, value_name = "OUT.csv|OUT.npy")]
+    pub output: Option<PathBuf>,
+    /// Points outside the domain: an error naming the point (default), NaN values, or skipped.
+    #[arg(long, value_enum, default_value_t = Outside::Error)]
+    pub outside: Outside,
+}
+
 impl PointArgs {
     /// The points; `functional` allows `x,y` as column names.
     pub fn resolve(&self, bounds: (Point2<f64>, Point2<f64>), functional: bool) -> Result<Points> {

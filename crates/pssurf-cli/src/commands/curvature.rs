@@ -6,7 +6,7 @@ use anyhow::Result;
 use pssurf::interrogate::Curvature;
 use pssurf::surface::ParametricSurface;
 
-use crate::points::{Outside, PointArgs, evaluate_table};
+use crate::points::{PointArgs, TableOutputArgs, evaluate_table};
 
 /// The output columns.
 pub const COLUMNS: [&str; 17] = [
@@ -23,13 +23,9 @@ pub struct CurvatureArgs {
     /// Where to evaluate.
     #[command(flatten)]
     pub points: PointArgs,
-    /// Output file: `.npy` (float64 array) or anything else for CSV; standard output (CSV)
-    /// when absent.
-    #[arg(short, long, value_name = "OUT.csv|OUT.npy")]
-    pub output: Option<PathBuf>,
-    /// Points outside the domain: an error naming the point (default), NaN values, or skipped.
-    #[arg(long, value_enum, default_value_t = Outside::Error)]
-    pub outside: Outside,
+    /// Where the table goes and what happens to points outside the domain.
+    #[command(flatten)]
+    pub table: TableOutputArgs,
 }
 
 /// Runs `pssurf curvature`.
@@ -43,8 +39,8 @@ pub fn run(args: &CurvatureArgs) -> Result<()> {
         &surface,
         &pts,
         &columns,
-        args.outside,
-        args.output.as_deref(),
+        args.table.outside,
+        args.table.output.as_deref(),
         |j, row| {
             row[0..3].copy_from_slice(j.jet.value.as_slice());
             row[14] = j.patch.map_or(f64::NAN, |p| p.index() as f64);

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use pssurf::surface::ParametricSurface;
 
-use crate::points::{Outside, PointArgs, evaluate_table};
+use crate::points::{PointArgs, TableOutputArgs, evaluate_table};
 
 /// Arguments of `pssurf eval`.
 #[derive(clap::Args, Debug)]
@@ -19,13 +19,9 @@ pub struct EvalArgs {
     /// Also write the partial derivatives xu,yu,zu,xv,yv,zv.
     #[arg(long)]
     pub derivatives: bool,
-    /// Output file: `.npy` (float64 array) or anything else for CSV; standard output (CSV)
-    /// when absent.
-    #[arg(short, long, value_name = "OUT.csv|OUT.npy")]
-    pub output: Option<PathBuf>,
-    /// Points outside the domain: an error naming the point (default), NaN values, or skipped.
-    #[arg(long, value_enum, default_value_t = Outside::Error)]
-    pub outside: Outside,
+    /// Where the table goes and what happens to points outside the domain.
+    #[command(flatten)]
+    pub table: TableOutputArgs,
 }
 
 /// Runs `pssurf eval`.
@@ -42,8 +38,8 @@ pub fn run(args: &EvalArgs) -> Result<()> {
         &surface,
         &pts,
         &columns,
-        args.outside,
-        args.output.as_deref(),
+        args.table.outside,
+        args.table.output.as_deref(),
         |j, row| {
             let j = &j.jet;
             row[0..3].copy_from_slice(j.value.as_slice());
