@@ -208,11 +208,10 @@ impl App {
         if self.cache.key == current {
             return;
         }
+        // Colour map and range changes only recolour; these need new samples.
         let sampling_changed = self.cache.key.as_ref().is_none_or(|(_, d)| {
             d.level != self.display.level
                 || d.overlays != self.display.overlays
-                || matches!(d.mode, ViewMode::Curvature(_))
-                    != matches!(self.display.mode, ViewMode::Curvature(_))
                 || d.mode != self.display.mode
         });
         if sampling_changed {
@@ -272,19 +271,10 @@ impl App {
             .and_then(|o| self.cache.meshes.get(&o.revision))
     }
 
-    /// The cached mesh of an object with a given revision.
-    pub fn cache_mesh(&self, _i: usize, revision: u64) -> Option<&ObjectMesh> {
-        self.cache.meshes.get(&revision)
-    }
-
     /// Fits the camera to the visible objects in a view of the given aspect ratio.
     pub fn frame_all(&mut self, aspect: f32) {
         self.update_geometry();
-        let sel: Vec<&ObjectMesh> = match self.selection.object {
-            Some(i) if !self.frame_pending => self.object_mesh(i).into_iter().collect(),
-            _ => self.cache.meshes.values().collect(),
-        };
-        if let Some((lo, hi)) = display::bounds(sel) {
+        if let Some((lo, hi)) = display::bounds(self.cache.meshes.values()) {
             self.camera.frame(lo, hi, aspect);
         }
         self.frame_pending = false;

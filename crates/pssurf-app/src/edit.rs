@@ -87,3 +87,74 @@ fn set_general(
     }
     .map_err(|e| e.to_string())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use pssurf::surface::ParametricSurface;
+
+    /// Editing a UPS surface changes its uniform form and its cached general form alike:
+    /// the general form rebuilt from the edited uniform one agrees everywhere.
+    #[test]
+    fn uniform_edits_keep_both_forms_in_step() {
+        for mut s in [crate::demo::wave_patch(3), crate::demo::paraboloid(3)] {
+            let _ = s.general(); // build the cached general form first
+            let n = vertex_count(&s);
+            for v in [0, n / 2, n - 1] {
+                let mut c = vertex_control(&s, v);
+                c.points[1] += nalgebra::Vector3::new(0.01, -0.02, 0.3);
+                if let Some(w) = &mut c.weights {
+                    w[2] = 2.5;
+                }
+                set_vertex_control(&mut s, v, &c).unwrap();
+                assert_eq!(vertex_control(&s, v), c);
+            }
+            let fresh = s.uniform().unwrap().to_general().unwrap();
+            let (lo, hi) = s.domain_bounds();
+            let mut compared = 0;
+            for k in 0..400 {
+                let t = (k as f64 + 0.5) / 400.0;
+                let uv = nalgebra::Point2::new(
+                    lo.x + t * (hi.x - lo.x),
+                    lo.y + (0.37 + 0.26 * (7.0 * t).sin()) * (hi.y - lo.y),
+                );
+                let (Ok(a), Ok(b)) = (
+                    s.jet_with(uv, &mut s.cursor_near(uv)),
+                    fresh.jet_with(uv, &mut fresh.cursor_near(uv)),
+                ) else {
+                    continue;
+                };
+                assert!((a.jet.value - b.jet.value).norm() < 1e-13, "at {uv}");
+                assert!((a.jet.dxx - b.jet.dxx).norm() < 1e-10, "at {uv}");
+                compared += 1;
+            }
+            assert!(compared > 200, "only {compared} points inside the domain");
+        }
+    }
+
+    #[test]
+    fn bad_control_points_are_rejected_and_leave_the_surface_alone() {
+        let mut s = crate::demo::paraboloid(2);
+        let before = vertex_control(&s, 3);
+        let mut c = before;
+        c.points[0].x = f64::NAN;
+        assert!(
+            set_vertex_control(&mut s, 3, &c)
+                .unwrap_err()
+                .contains("finite")
+        );
+        let mut c = before;
+        c.weights = Some([1.0, 0.0, 1.0]);
+        assert!(
+            set_vertex_control(&mut s, 3, &c)
+                .unwrap_err()
+                .contains("positive")
+        );
+        assert!(
+            set_vertex_control(&mut s, 10_000, &before)
+                .unwrap_err()
+                .contains("no vertex")
+        );
+        assert_eq!(vertex_control(&s, 3), before);
+    }
+}

@@ -163,7 +163,7 @@ pub fn probe(app: &mut App, rect: Rect, pos: Pos2) {
     let (x, y) = ndc(rect, pos);
     let (origin, dir) = app.camera.ray(x, y, rect.width() / rect.height().max(1.0));
     let mut best: Option<(usize, f32, Point2<f64>)> = None;
-    for (i, o) in app
+    for (i, _) in app
         .doc
         .scene
         .objects
@@ -171,7 +171,7 @@ pub fn probe(app: &mut App, rect: Rect, pos: Pos2) {
         .enumerate()
         .filter(|(_, o)| o.visible)
     {
-        let Some(m) = app.cache_mesh(i, o.revision) else {
+        let Some(m) = app.object_mesh(i) else {
             continue;
         };
         if let Some((t, d, b)) = ray_triangles(
