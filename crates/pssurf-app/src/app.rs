@@ -37,8 +37,72 @@ pub struct GeometryCache {
     pub geometry: Arc<FrameGeometry>,
     /// The colour scale of a curvature plot (for the legend).
     pub scale: Option<ColorScale>,
-    /// Per visible object: (object index, first vertex, first index) in `geometry`.
-    pub ranges: Vec<(usize, usize, usize)>,
+    /// Where each visible object lies in `geometry`.
+    pub ranges: Vec<ObjectRange>,
+}
+
+/// Where one object's data starts in the combined [`FrameGeometry`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ObjectRange {
+    /// The object's index in the scene.
+    pub object: usize,
+    /// Its first surface vertex.
+    pub vertex: usize,
+    /// Its first index.
+    pub index: usize,
+    /// Its first line vertex.
+    pub line: usize,
+}
+
+impl GeometryCache {
+    /// After the control triangle of `vertex` of object `object` changed (its revision was
+    /// `old`), updates only that vertex's molecule in the object's mesh and in the combined
+    /// geometry, and records the rewritten ranges for the GPU upload. Does nothing when the
+    /// object was not drawn with these settings (the next [`App::update_geometry`] then
+    /// rebuilds it). The colour scale of a curvature plot is kept as it was.
+    pub fn update_vertex(
+        &mut self,
+        scene: &Scene,
+        object: usize,
+        old: u64,
+        vertex: usize,
+        display: &DisplaySettings,
+    ) {
+        let Some((key, settings)) = &mut self.key else {
+            return;
+        };
+        let o = &scene.objects[object];
+        let Some(range) = self.ranges.iter().find(|r| r.object == object).copied() else {
+            return;
+        };
+        if settings != display || key.get(object).is_none_or(|k| k.0 != old) {
+            return;
+        }
+        let Some(mut mesh) = self.meshes.remove(&old) else {
+            return;
+        };
+        let map = display::color_map(display);
+        let paint = self.scale.as_ref().map(|s| (&map, s));
+        let changed = display::update_vertex(&mut mesh, o, display, vertex, paint);
+        let g = Arc::make_mut(&mut self.geometry);
+        let shift = |rs: &[std::ops::Range<usize>], by: usize| -> Vec<std::ops::Range<usize>> {
+            rs.iter().map(|r| r.start + by..r.end + by).collect()
+        };
+        for r in &changed.vertices {
+            g.vertices[r.start + range.vertex..r.end + range.vertex]
+                .copy_from_slice(&mesh.vertices[r.clone()]);
+        }
+        for r in &changed.lines {
+            g.lines[r.start + range.line..r.end + range.line]
+                .copy_from_slice(&mesh.lines[r.clone()]);
+        }
+        g.record(
+            shift(&changed.vertices, range.vertex),
+            shift(&changed.lines, range.line),
+        );
+        key[object].0 = o.revision;
+        self.meshes.insert(o.revision, mesh);
+    }
 }
 
 /// The application.
@@ -187,12 +251,40 @@ impl App {
         vertex: usize,
         c: VertexControl,
     ) -> Result<(), String> {
+        let old = self.doc.scene.objects[object].revision;
         self.doc.edit("edit control points", |scene| {
             let o = &mut scene.objects[object];
             edit::set_vertex_control(&mut o.surface, vertex, &c)?;
             o.touch();
-            Ok(())
-        })
+            Ok::<(), String>(())
+        })?;
+        self.cache
+            .update_vertex(&self.doc.scene, object, old, vertex, &self.display);
+        Ok(())
+    }
+
+    /// Sets a vertex's control triangle during a drag: no undo step of its own (see
+    /// [`Document::checkpoint`]), and only the vertex's molecule is re-tessellated and
+    /// uploaded.
+    pub fn drag_vertex(
+        &mut self,
+        object: usize,
+        vertex: usize,
+        c: VertexControl,
+    ) -> Result<(), String> {
+        let old = self.doc.scene.objects[object].revision;
+        let mut result = Ok(());
+        self.doc.edit_continuing(|scene| {
+            let o = &mut scene.objects[object];
+            result = edit::set_vertex_control(&mut o.surface, vertex, &c);
+            if result.is_ok() {
+                o.touch();
+            }
+        });
+        result?;
+        self.cache
+            .update_vertex(&self.doc.scene, object, old, vertex, &self.display);
+        Ok(())
     }
 
     /// Rebuilds the geometry if the scene or the display settings changed.
@@ -251,9 +343,12 @@ impl App {
         for (i, r) in visible {
             let m = &self.cache.meshes[&r];
             let base = g.vertices.len() as u32;
-            self.cache
-                .ranges
-                .push((i, g.vertices.len(), g.indices.len()));
+            self.cache.ranges.push(ObjectRange {
+                object: i,
+                vertex: g.vertices.len(),
+                index: g.indices.len(),
+                line: g.lines.len(),
+            });
             g.vertices.extend_from_slice(&m.vertices);
             g.indices.extend(m.indices.iter().map(|k| k + base));
             g.lines.extend_from_slice(&m.lines);

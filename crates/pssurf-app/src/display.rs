@@ -2,11 +2,13 @@
 //! piece (so curvature jumps across PS split lines stay visible), coloured on the CPU by the
 //! library's colour maps, plus overlay lines.
 
-use nalgebra::{Point3, Vector3};
-use pssurf::interrogate::{CurvatureQuantity, sample_patches};
+use std::ops::Range as Span;
+
+use nalgebra::{Matrix3, Matrix4, Point3, Vector3};
+use pssurf::interrogate::{CurvatureQuantity, sample_patches, sample_pieces, vertices_per_piece};
 use pssurf::surface::PatchwiseSurface;
 use pssurf_viz::colormap::{ColorMap, ColorScale};
-use pssurf_viz::plot::{Overlays, Range, overlay_lines, range_scale};
+use pssurf_viz::plot::{Overlays, Polyline, Range, control_overlay, range_scale, triangle_overlay};
 
 use crate::scene::SceneObject;
 
@@ -77,6 +79,11 @@ pub struct LineVertex {
 }
 
 /// The drawable form of one object.
+///
+/// The surface vertices are laid out piece by piece as `sample_patches` makes them (piece
+/// k = 6t + sub of triangle t owns vertices `k·m .. (k+1)·m`), and the overlay lines
+/// triangle by triangle (`layout`), so that a local edit rewrites only the slots of the
+/// triangles it touches.
 #[derive(Clone, Debug, Default)]
 pub struct ObjectMesh {
     /// Surface vertices.
@@ -89,6 +96,28 @@ pub struct ObjectMesh {
     pub lines: Vec<LineVertex>,
     /// The curvature values per vertex, when coloured by curvature.
     pub values: Vec<f64>,
+    /// Where each triangle's and vertex's data lies.
+    pub layout: MeshLayout,
+}
+
+/// Where the parts of an [`ObjectMesh`] lie.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshLayout {
+    /// The sampling level (each piece has `vertices_per_piece(level)` vertices).
+    pub level: u32,
+    /// The overlay line vertices of triangle t are `triangle_lines[t] .. triangle_lines[t+1]`.
+    pub triangle_lines: Vec<usize>,
+    /// The first line vertex of the control triangles (6 per vertex), when drawn.
+    pub control_lines: Option<usize>,
+}
+
+/// The parts of an [`ObjectMesh`] that a local update rewrote.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Changed {
+    /// Ranges of `vertices` (and of `uvs`, `values`).
+    pub vertices: Vec<Span<usize>>,
+    /// Ranges of `lines`.
+    pub lines: Vec<Span<usize>>,
 }
 
 /// The colour scale used for a curvature plot of the given values (see
@@ -105,14 +134,20 @@ pub fn scale_for(
 /// The neutral surface colour.
 pub const NEUTRAL: [u8; 4] = [200, 200, 205, 255];
 
+/// The sampling level used for an object (the setting, capped by [`max_level`]).
+pub fn display_level(o: &SceneObject, settings: &DisplaySettings) -> u32 {
+    settings
+        .level
+        .min(max_level(o.surface.general().patch_count()))
+}
+
 /// Samples an object for display, in a neutral colour (see [`colorize`]).
 pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
     let surface = o.surface.general();
-    let level = settings.level.min(max_level(surface.patch_count()));
+    let level = display_level(o, settings);
     let curvature = matches!(settings.mode, ViewMode::Curvature(_));
     let sampled = sample_patches(surface, level, curvature);
-    let m = o.transform.matrix();
-    let rot = m.fixed_view::<3, 3>(0, 0).into_owned();
+    let placement = Placement::of(o);
     let values = match settings.mode {
         ViewMode::Curvature(q) => sampled.quantity(q),
         _ => Vec::new(),
@@ -122,54 +157,188 @@ pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
         .positions
         .iter()
         .zip(&sampled.mesh.normals)
-        .map(|(p, n)| {
-            let p = m.transform_point(&Point3::from(*p));
-            let n = (rot * n)
-                .try_normalize(1e-300)
-                .unwrap_or_else(Vector3::zeros);
-            GpuVertex {
-                position: p.coords.map(|x| x as f32).into(),
-                normal: n.map(|x| x as f32).into(),
-                color: NEUTRAL,
-            }
-        })
+        .map(|(p, n)| placement.vertex(p, n, NEUTRAL))
         .collect();
-    let lines = overlay_lines(surface, &settings.overlays, level.min(3))
-        .into_iter()
-        .flat_map(|pl| {
-            let c = [pl.color[0], pl.color[1], pl.color[2], 255];
-            let pts: Vec<[f32; 3]> = pl
-                .points
-                .iter()
-                .map(|p| {
-                    m.transform_point(&Point3::from(*p))
-                        .coords
-                        .map(|x| x as f32)
-                        .into()
-                })
-                .collect();
-            pts.windows(2)
-                .flat_map(|w| {
-                    [
-                        LineVertex {
-                            position: w[0],
-                            color: c,
-                        },
-                        LineVertex {
-                            position: w[1],
-                            color: c,
-                        },
-                    ]
-                })
-                .collect::<Vec<_>>()
-        })
-        .collect();
+    let (lines, layout) = object_lines(o, settings, level);
     ObjectMesh {
         vertices,
         indices: sampled.mesh.triangles.iter().flatten().copied().collect(),
         uvs: sampled.mesh.uvs.iter().map(|p| [p.x, p.y]).collect(),
         lines,
         values,
+        layout,
+    }
+}
+
+/// The overlay lines of an object, triangle by triangle, then the control triangles.
+fn object_lines(
+    o: &SceneObject,
+    settings: &DisplaySettings,
+    level: u32,
+) -> (Vec<LineVertex>, MeshLayout) {
+    let surface = o.surface.general();
+    let placement = Placement::of(o);
+    let tri = surface.basis().triangulation();
+    let overlays = &settings.overlays;
+    let mut lines = Vec::new();
+    let mut triangle_lines = vec![0];
+    for t in 0..tri.triangle_count() {
+        for pl in triangle_overlay(surface, overlays, level.min(3), t) {
+            placement.segments(&pl, &mut lines);
+        }
+        triangle_lines.push(lines.len());
+    }
+    let control_lines = overlays.control.then(|| {
+        let start = lines.len();
+        for i in 0..tri.vertex_count() {
+            placement.segments(&control_overlay(surface, i), &mut lines);
+        }
+        start
+    });
+    let layout = MeshLayout {
+        level,
+        triangle_lines,
+        control_lines,
+    };
+    (lines, layout)
+}
+
+/// Re-samples only the molecule of `vertex` after its control triangle changed (local
+/// support: nothing else moved), recolouring with `paint` in a curvature plot, and rewrites
+/// its overlay lines in place. Returns what changed.
+pub fn update_vertex(
+    mesh: &mut ObjectMesh,
+    o: &SceneObject,
+    settings: &DisplaySettings,
+    vertex: usize,
+    paint: Option<(&ColorMap, &ColorScale)>,
+) -> Changed {
+    let surface = o.surface.general();
+    let level = mesh.layout.level;
+    let per = vertices_per_piece(level);
+    let molecule: Vec<usize> = surface
+        .basis()
+        .triangulation()
+        .molecule(vertex)
+        .iter()
+        .map(|&t| t as usize)
+        .collect();
+    let pieces: Vec<usize> = molecule
+        .iter()
+        .flat_map(|&t| (0..6).map(move |sub| 6 * t + sub))
+        .collect();
+    let quantity = match settings.mode {
+        ViewMode::Curvature(q) => Some(q),
+        _ => None,
+    };
+    let sampled = sample_pieces(surface, level, quantity.is_some(), &pieces);
+    let placement = Placement::of(o);
+    let mut changed = Changed::default();
+    for (j, &k) in pieces.iter().enumerate() {
+        let (src, dst) = (j * per..(j + 1) * per, k * per..(k + 1) * per);
+        for (a, b) in src.clone().zip(dst.clone()) {
+            let mut color = mesh.vertices[b].color;
+            if let Some(q) = quantity {
+                let x = sampled.curvature[a].get(q);
+                mesh.values[b] = x;
+                if let Some((map, scale)) = paint {
+                    let [r, g, b] = map.at(scale.position(x));
+                    color = [r, g, b, 255];
+                }
+            }
+            let (p, n) = (&sampled.mesh.positions[a], &sampled.mesh.normals[a]);
+            mesh.vertices[b] = placement.vertex(p, n, color);
+        }
+        push_range(&mut changed.vertices, dst);
+    }
+    let overlays = &settings.overlays;
+    let mut lines = Vec::new();
+    for &t in &molecule {
+        let slot = mesh.layout.triangle_lines[t]..mesh.layout.triangle_lines[t + 1];
+        lines.clear();
+        for pl in triangle_overlay(surface, overlays, level.min(3), t) {
+            placement.segments(&pl, &mut lines);
+        }
+        write_slot(&mut mesh.lines[slot.clone()], &lines);
+        push_range(&mut changed.lines, slot);
+    }
+    if let Some(start) = mesh.layout.control_lines {
+        lines.clear();
+        placement.segments(&control_overlay(surface, vertex), &mut lines);
+        let slot = start + 6 * vertex..start + 6 * vertex + 6;
+        write_slot(&mut mesh.lines[slot.clone()], &lines);
+        push_range(&mut changed.lines, slot);
+    }
+    changed
+}
+
+/// Appends a range, merging it with the last one when they touch.
+fn push_range(ranges: &mut Vec<Span<usize>>, r: Span<usize>) {
+    if r.is_empty() {
+        return;
+    }
+    match ranges.last_mut() {
+        Some(last) if last.end == r.start => last.end = r.end,
+        _ => ranges.push(r),
+    }
+}
+
+/// Writes `lines` into a fixed slot; the rest of the slot becomes invisible (alpha 0; the
+/// line shader discards it). A line whose point could not be evaluated may make the new
+/// lines shorter than the slot, never longer in practice; extra segments are dropped.
+fn write_slot(slot: &mut [LineVertex], lines: &[LineVertex]) {
+    let n = lines.len().min(slot.len()) & !1;
+    slot[..n].copy_from_slice(&lines[..n]);
+    for v in &mut slot[n..] {
+        v.color = [0; 4];
+    }
+}
+
+/// An object's placement applied to points, normals and lines.
+struct Placement {
+    matrix: Matrix4<f64>,
+    rotation: Matrix3<f64>,
+}
+
+impl Placement {
+    fn of(o: &SceneObject) -> Self {
+        let matrix = o.transform.matrix();
+        Placement {
+            rotation: matrix.fixed_view::<3, 3>(0, 0).into_owned(),
+            matrix,
+        }
+    }
+
+    fn point(&self, p: &Vector3<f64>) -> [f32; 3] {
+        self.matrix
+            .transform_point(&Point3::from(*p))
+            .coords
+            .map(|x| x as f32)
+            .into()
+    }
+
+    fn vertex(&self, p: &Vector3<f64>, n: &Vector3<f64>, color: [u8; 4]) -> GpuVertex {
+        let n = (self.rotation * n)
+            .try_normalize(1e-300)
+            .unwrap_or_else(Vector3::zeros);
+        GpuVertex {
+            position: self.point(p),
+            normal: n.map(|x| x as f32).into(),
+            color,
+        }
+    }
+
+    /// Appends a polyline as line-list segments.
+    fn segments(&self, pl: &Polyline, out: &mut Vec<LineVertex>) {
+        let color = [pl.color[0], pl.color[1], pl.color[2], 255];
+        for w in pl.points.windows(2) {
+            for p in w {
+                out.push(LineVertex {
+                    position: self.point(p),
+                    color,
+                });
+            }
+        }
     }
 }
 

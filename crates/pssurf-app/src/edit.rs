@@ -26,7 +26,7 @@ pub fn vertex_count(s: &Surface) -> usize {
 pub fn vertex_control(s: &Surface, i: usize) -> VertexControl {
     let g = s.general();
     VertexControl {
-        points: g.control_points()[i],
+        points: g.control_triangle(i),
         weights: match g {
             PsSurface::Rational(n) => Some(n.weights()[i]),
             _ => None,

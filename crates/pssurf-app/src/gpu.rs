@@ -3,6 +3,7 @@
 //! which an `egui_wgpu` paint callback then composites into the UI. The same renderer draws
 //! headless pictures.
 
+use std::ops::Range;
 use std::sync::Arc;
 
 use eframe::egui_wgpu::{self, wgpu};
@@ -36,8 +37,10 @@ pub struct Uniforms {
 }
 
 /// The geometry of one frame, shared with the paint callback; `generation` changes whenever
-/// the content does, so that it is uploaded only then.
-#[derive(Debug, Default)]
+/// the content does, so that it is uploaded only then, and `history` says which ranges the
+/// last local updates rewrote, so that a renderer holding an earlier generation uploads only
+/// those.
+#[derive(Clone, Debug, Default)]
 pub struct FrameGeometry {
     /// Identifies the content.
     pub generation: u64,
@@ -47,15 +50,119 @@ pub struct FrameGeometry {
     pub indices: Vec<u32>,
     /// Overlay segments.
     pub lines: Vec<LineVertex>,
+    /// The latest local updates, oldest first, each leading from one generation to the next
+    /// (empty after a full rebuild).
+    pub history: Vec<LocalUpdate>,
+}
+
+/// Ranges rewritten in place between two generations (the sizes did not change).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LocalUpdate {
+    /// The generation before.
+    pub from: u64,
+    /// The generation after.
+    pub to: u64,
+    /// Rewritten ranges of `vertices`.
+    pub vertices: Vec<Range<usize>>,
+    /// Rewritten ranges of `lines`.
+    pub lines: Vec<Range<usize>>,
+}
+
+/// How many local updates a [`FrameGeometry`] remembers.
+pub const HISTORY: usize = 16;
+
+impl FrameGeometry {
+    /// Records that the given ranges were rewritten in place: a new generation.
+    pub fn record(&mut self, vertices: Vec<Range<usize>>, lines: Vec<Range<usize>>) {
+        let from = self.generation;
+        self.generation = crate::scene::fresh_revision();
+        self.history.push(LocalUpdate {
+            from,
+            to: self.generation,
+            vertices,
+            lines,
+        });
+        if self.history.len() > HISTORY {
+            self.history.remove(0);
+        }
+    }
+
+    /// The local updates that lead from generation `from` to the current one, if they are
+    /// all remembered.
+    pub fn updates_since(&self, from: u64) -> Option<&[LocalUpdate]> {
+        let start = self.history.iter().position(|u| u.from == from)?;
+        Some(&self.history[start..])
+    }
 }
 
 struct Buffers {
     generation: u64,
     vertices: wgpu::Buffer,
+    vertex_count: usize,
     indices: wgpu::Buffer,
     index_count: u32,
     lines: wgpu::Buffer,
     line_count: u32,
+}
+
+impl Buffers {
+    fn new(device: &wgpu::Device, g: &FrameGeometry) -> Self {
+        let make = |label, contents: &[u8], usage| {
+            // Empty buffers are not allowed: keep at least one element's room.
+            let padded;
+            let contents = if contents.is_empty() {
+                padded = vec![0u8; 64];
+                &padded[..]
+            } else {
+                contents
+            };
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let rewritable = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        Buffers {
+            generation: g.generation,
+            vertices: make(
+                "pssurf vertices",
+                bytemuck::cast_slice(&g.vertices),
+                rewritable,
+            ),
+            vertex_count: g.vertices.len(),
+            indices: make(
+                "pssurf indices",
+                bytemuck::cast_slice(&g.indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            index_count: g.indices.len() as u32,
+            lines: make("pssurf lines", bytemuck::cast_slice(&g.lines), rewritable),
+            line_count: g.lines.len() as u32,
+        }
+    }
+
+    /// Whether `g` has the sizes of these buffers (so ranges can be rewritten in place).
+    fn fits(&self, g: &FrameGeometry) -> bool {
+        self.vertex_count == g.vertices.len()
+            && self.index_count as usize == g.indices.len()
+            && self.line_count as usize == g.lines.len()
+    }
+}
+
+/// Writes the given element ranges of `data` into `buffer` at the same offsets.
+fn write_ranges<T: bytemuck::Pod>(
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+    data: &[T],
+    ranges: &[Range<usize>],
+) {
+    let size = std::mem::size_of::<T>();
+    for r in ranges {
+        let bytes: &[u8] = bytemuck::cast_slice(&data[r.clone()]);
+        // Copies must be multiples of 4 bytes; both element types are.
+        queue.write_buffer(buffer, (r.start * size) as u64, bytes);
+    }
 }
 
 struct Target {
@@ -75,6 +182,17 @@ pub struct ViewRenderer {
     target: Option<Target>,
     /// Bumped whenever the target texture is recreated.
     pub target_generation: u64,
+    /// How many uploads were full and how many rewrote only ranges.
+    pub uploads: UploadCounts,
+}
+
+/// Counts of the two kinds of geometry upload.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UploadCounts {
+    /// New buffers with everything.
+    pub full: usize,
+    /// Only the ranges of local updates.
+    pub partial: usize,
 }
 
 impl ViewRenderer {
@@ -182,53 +300,36 @@ impl ViewRenderer {
             buffers: None,
             target: None,
             target_generation: 0,
+            uploads: UploadCounts::default(),
         }
     }
 
-    /// Uploads the geometry if it changed since the last upload.
-    pub fn upload(&mut self, device: &wgpu::Device, g: &FrameGeometry) {
-        if self
-            .buffers
-            .as_ref()
-            .is_some_and(|b| b.generation == g.generation)
-        {
+    /// Uploads the geometry if it changed since the last upload: only the rewritten ranges
+    /// when the buffers hold a generation that the geometry's history leads from, everything
+    /// otherwise.
+    pub fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, g: &FrameGeometry) {
+        let Some(b) = &mut self.buffers else {
+            self.buffers = Some(Buffers::new(device, g));
+            self.uploads.full += 1;
+            return;
+        };
+        if b.generation == g.generation {
             return;
         }
-        let make = |label, contents: &[u8], usage| {
-            // Empty buffers are not allowed: keep at least one element's room.
-            let padded;
-            let contents = if contents.is_empty() {
-                padded = vec![0u8; 64];
-                &padded[..]
-            } else {
-                contents
-            };
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        self.buffers = Some(Buffers {
-            generation: g.generation,
-            vertices: make(
-                "pssurf vertices",
-                bytemuck::cast_slice(&g.vertices),
-                wgpu::BufferUsages::VERTEX,
-            ),
-            indices: make(
-                "pssurf indices",
-                bytemuck::cast_slice(&g.indices),
-                wgpu::BufferUsages::INDEX,
-            ),
-            index_count: g.indices.len() as u32,
-            lines: make(
-                "pssurf lines",
-                bytemuck::cast_slice(&g.lines),
-                wgpu::BufferUsages::VERTEX,
-            ),
-            line_count: g.lines.len() as u32,
-        });
+        match g.updates_since(b.generation) {
+            Some(updates) if b.fits(g) => {
+                for u in updates {
+                    write_ranges(queue, &b.vertices, &g.vertices, &u.vertices);
+                    write_ranges(queue, &b.lines, &g.lines, &u.lines);
+                }
+                b.generation = g.generation;
+                self.uploads.partial += 1;
+            }
+            _ => {
+                *b = Buffers::new(device, g);
+                self.uploads.full += 1;
+            }
+        }
     }
 
     fn ensure_target(&mut self, device: &wgpu::Device, size: [u32; 2]) {
@@ -477,7 +578,7 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
         resources: &mut egui_wgpu::CallbackResources,
     ) -> Vec<wgpu::CommandBuffer> {
         if let Some(r) = resources.get_mut::<ViewResources>() {
-            r.renderer.upload(device, &self.geometry);
+            r.renderer.upload(device, queue, &self.geometry);
             r.renderer
                 .render(device, queue, encoder, self.size, &self.uniforms);
             r.compositor.update(device, &r.renderer);

@@ -91,5 +91,9 @@ fn vs_line(@location(0) pos: vec3<f32>, @location(1) color: vec4<f32>) -> LineOu
 
 @fragment
 fn fs_line(in: LineOut) -> @location(0) vec4<f32> {
+    // Unused room in a line slot (see display.rs) is transparent.
+    if (in.color.a < 0.5) {
+        discard;
+    }
     return in.color;
 }

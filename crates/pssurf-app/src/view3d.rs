@@ -306,13 +306,7 @@ pub fn drag_point(app: &mut App, rect: Rect, (i, v, k): (usize, usize, usize), d
     } else {
         c.points[k] += local;
     }
-    let mut result = Ok(());
-    app.doc.edit_continuing(|scene| {
-        let o = &mut scene.objects[i];
-        result = edit::set_vertex_control(&mut o.surface, v, &c);
-        o.touch();
-    });
-    if let Err(e) = result {
+    if let Err(e) = app.drag_vertex(i, v, c) {
         app.status = e;
     }
     app.vertex_edit = None;

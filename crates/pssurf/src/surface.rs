@@ -353,18 +353,24 @@ impl PsSurface {
 
     /// The control points in R³ (for a functional surface (X_ij, Y_ij, c_ij), Definition 2.23).
     pub fn control_points(&self) -> Vec<[Vector3<f64>; 3]> {
+        (0..self.basis().triangulation().vertex_count())
+            .map(|i| self.control_triangle(i))
+            .collect()
+    }
+
+    /// The control triangle of vertex `i` in R³ (Definition 2.24).
+    ///
+    /// # Panics
+    /// If `i` is not a vertex.
+    pub fn control_triangle(&self, i: usize) -> [Vector3<f64>; 3] {
         match self {
-            PsSurface::Functional(s) => s
-                .coefficients()
-                .iter()
-                .enumerate()
-                .map(|(i, c)| {
-                    let q = s.basis().control_xy(i);
-                    std::array::from_fn(|j| Vector3::new(q[j].x, q[j].y, c[j]))
-                })
-                .collect(),
-            PsSurface::Parametric(s) => s.coefficients().to_vec(),
-            PsSurface::Rational(s) => s.points().to_vec(),
+            PsSurface::Functional(s) => {
+                let q = s.basis().control_xy(i);
+                let c = s.coefficients()[i];
+                std::array::from_fn(|j| Vector3::new(q[j].x, q[j].y, c[j]))
+            }
+            PsSurface::Parametric(s) => s.coefficients()[i],
+            PsSurface::Rational(s) => s.points()[i],
         }
     }
 }

@@ -185,8 +185,30 @@ pub fn plot(surface: &PsSurface, opts: &PlotOptions) -> Picture {
     plot_sampled(&sampled, &lines, opts)
 }
 
-/// The overlay lines of a surface, sampled finely enough for `level`.
+/// The overlay lines of a surface, sampled finely enough for `level`: those of every
+/// triangle ([`triangle_overlay`]), then the control triangles ([`control_overlay`]).
 pub fn overlay_lines(surface: &PsSurface, overlays: &Overlays, level: u32) -> Vec<Polyline> {
+    let tri = surface.basis().triangulation();
+    let mut out: Vec<Polyline> = (0..tri.triangle_count())
+        .flat_map(|t| triangle_overlay(surface, overlays, level, t))
+        .collect();
+    if overlays.control {
+        out.extend((0..tri.vertex_count()).map(|i| control_overlay(surface, i)));
+    }
+    out
+}
+
+/// The lines drawn over triangle `t`: its triangulation edges (an interior edge by the one of
+/// its two triangles whose first vertex has the smaller index), its boundary edges, its PS
+/// split lines. They depend only on the surface over `t`, so a local edit changes only the
+/// lines of the triangles it touches; how many lines there are depends only on the
+/// triangulation and `overlays`.
+pub fn triangle_overlay(
+    surface: &PsSurface,
+    overlays: &Overlays,
+    level: u32,
+    t: usize,
+) -> Vec<Polyline> {
     let basis = surface.basis();
     let tri = basis.triangulation();
     let steps = (2usize << level.min(6)).max(4);
@@ -200,56 +222,47 @@ pub fn overlay_lines(surface: &PsSurface, overlays: &Overlays, level: u32) -> Ve
             .collect()
     };
     let mut out = Vec::new();
+    let mut c = Cursor(t);
     if overlays.wire || overlays.boundary {
-        for t in 0..tri.triangle_count() {
-            for i in 0..3 {
-                let boundary = tri.is_boundary_edge(t, i);
-                let (a, b) = tri.edge_vertices(t, i);
-                // Each interior edge once.
-                let draw =
-                    (overlays.wire && (boundary || a < b)) || (overlays.boundary && boundary);
-                if draw {
-                    let mut c = Cursor(t);
-                    out.push(Polyline {
-                        points: along(tri.vertex(a), tri.vertex(b), &mut c),
-                        color: if boundary && overlays.boundary {
-                            [0, 0, 0]
-                        } else {
-                            [40, 40, 40]
-                        },
-                        thickness: if boundary && overlays.boundary { 2 } else { 1 },
-                    });
-                }
+        for i in 0..3 {
+            let boundary = tri.is_boundary_edge(t, i);
+            let (a, b) = tri.edge_vertices(t, i);
+            let draw = (overlays.wire && (boundary || a < b)) || (overlays.boundary && boundary);
+            if draw {
+                let heavy = boundary && overlays.boundary;
+                out.push(Polyline {
+                    points: along(tri.vertex(a), tri.vertex(b), &mut c),
+                    color: if heavy { [0, 0, 0] } else { [40, 40, 40] },
+                    thickness: if heavy { 2 } else { 1 },
+                });
             }
         }
     }
     if overlays.refinement {
         let r = basis.refinement();
-        for t in 0..tri.triangle_count() {
-            let z = r.z(t);
-            let v = tri.triangle(t);
-            let mut c = Cursor(t);
-            for k in 0..3 {
-                for end in [tri.vertex(v[k]), r.edge_point(tri, t, k)] {
-                    out.push(Polyline {
-                        points: along(z, end, &mut c),
-                        color: [30, 60, 200],
-                        thickness: 1,
-                    });
-                }
+        let z = r.z(t);
+        let v = tri.triangle(t);
+        for k in 0..3 {
+            for end in [tri.vertex(v[k]), r.edge_point(tri, t, k)] {
+                out.push(Polyline {
+                    points: along(z, end, &mut c),
+                    color: [30, 60, 200],
+                    thickness: 1,
+                });
             }
         }
     }
-    if overlays.control {
-        for c in surface.control_points() {
-            out.push(Polyline {
-                points: vec![c[0], c[1], c[2], c[0]],
-                color: [230, 120, 0],
-                thickness: 1,
-            });
-        }
-    }
     out
+}
+
+/// The control triangle of vertex `i` as a closed polyline.
+pub fn control_overlay(surface: &PsSurface, i: usize) -> Polyline {
+    let c = surface.control_triangle(i);
+    Polyline {
+        points: vec![c[0], c[1], c[2], c[0]],
+        color: [230, 120, 0],
+        thickness: 1,
+    }
 }
 
 /// Renders a sampled surface with lines.

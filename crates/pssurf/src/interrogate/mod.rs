@@ -18,4 +18,4 @@ pub use curvature::{
 pub use fairness::{
     DEFAULT_QUADRATURE_DEGREE, Fairness, FairnessIntegrals, QuantityStats, fairness,
 };
-pub use sample::{SampledSurface, sample_patches};
+pub use sample::{SampledSurface, sample_patches, sample_pieces, vertices_per_piece};

@@ -43,11 +43,49 @@ pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
     level: u32,
     with_curvature: bool,
 ) -> SampledSurface {
+    sample_with(surface, level, with_curvature, surface.patch_count(), |j| j)
+}
+
+/// Samples only the listed pieces, in that order, exactly as [`sample_patches`] samples them:
+/// slot j of the result (its vertices `j·m .. (j+1)·m` with m = (n + 1)(n + 2)/2, its
+/// triangles `j·n² .. (j+1)·n²`, indices relative to the result) is piece `pieces[j]`. After
+/// a local change of a spline (one vertex's control triangle changes only the pieces of its
+/// molecule) this re-tessellates just the pieces that changed.
+///
+/// # Panics
+/// If a piece index is out of range, or as [`sample_patches`].
+pub fn sample_pieces<S: PatchwiseSurface + ?Sized>(
+    surface: &S,
+    level: u32,
+    with_curvature: bool,
+    pieces: &[usize],
+) -> SampledSurface {
+    let count = surface.patch_count();
+    assert!(
+        pieces.iter().all(|&k| k < count),
+        "piece index out of range ({count} pieces)"
+    );
+    sample_with(surface, level, with_curvature, pieces.len(), |j| pieces[j])
+}
+
+/// The vertex count of one piece sampled at `level`.
+pub fn vertices_per_piece(level: u32) -> usize {
     let n = steps(level);
-    let per_vertex = (n + 1) * (n + 2) / 2;
+    (n + 1) * (n + 2) / 2
+}
+
+/// Samples `slots` pieces, slot j being piece `piece(j)`.
+fn sample_with<S: PatchwiseSurface + ?Sized>(
+    surface: &S,
+    level: u32,
+    with_curvature: bool,
+    slots: usize,
+    piece: impl Fn(usize) -> usize + Sync,
+) -> SampledSurface {
+    let n = steps(level);
+    let per_vertex = vertices_per_piece(level);
     let per_triangle = n * n;
-    let patches = surface.patch_count();
-    let total = patches * per_vertex;
+    let total = slots * per_vertex;
     assert!(
         total <= u32::MAX as usize,
         "too many vertices ({total}) for 32-bit indices"
@@ -58,7 +96,7 @@ pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
             positions: vec![Vector3::zeros(); total],
             normals: vec![Vector3::zeros(); total],
             uvs: vec![Point2::origin(); total],
-            triangles: vec![[0; 3]; patches * per_triangle],
+            triangles: vec![[0; 3]; slots * per_triangle],
         },
         patch: vec![0; total],
         curvature: if with_curvature {
@@ -68,7 +106,9 @@ pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
         },
     };
     let local = grid_triangles(n);
-    let fill = |k: usize, chunk: PatchChunk<'_>| fill_patch(surface, k, n, &local, chunk);
+    let fill = |j: usize, chunk: PatchChunk<'_>| {
+        fill_patch(surface, piece(j), n, &local, (j * per_vertex) as u32, chunk)
+    };
     let mesh = &mut out.mesh;
     let chunks = mesh
         .positions
@@ -82,9 +122,9 @@ pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
             .zip(out.curvature.par_chunks_mut(per_vertex))
             .enumerate()
             .for_each(
-                |(k, (((((positions, normals), uvs), patch), triangles), curvature))| {
+                |(j, (((((positions, normals), uvs), patch), triangles), curvature))| {
                     fill(
-                        k,
+                        j,
                         PatchChunk {
                             positions,
                             normals,
@@ -99,9 +139,9 @@ pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
     } else {
         chunks
             .enumerate()
-            .for_each(|(k, ((((positions, normals), uvs), patch), triangles))| {
+            .for_each(|(j, ((((positions, normals), uvs), patch), triangles))| {
                 fill(
-                    k,
+                    j,
                     PatchChunk {
                         positions,
                         normals,
@@ -126,12 +166,13 @@ struct PatchChunk<'a> {
     curvature: Option<&'a mut [PrincipalCurvatures]>,
 }
 
-/// Evaluates piece `k` on its grid of `n` steps per side.
+/// Evaluates piece `k` on its grid of `n` steps per side; its first vertex has index `base`.
 fn fill_patch<S: PatchwiseSurface + ?Sized>(
     surface: &S,
     k: usize,
     n: usize,
     local: &[[u32; 3]],
+    base: u32,
     mut out: PatchChunk<'_>,
 ) {
     let dom = surface.patch_domain(k);
@@ -158,7 +199,6 @@ fn fill_patch<S: PatchwiseSurface + ?Sized>(
             v += 1;
         }
     }
-    let base = (k * ((n + 1) * (n + 2) / 2)) as u32;
     let flip = dom.det() < 0.0;
     for (t, l) in out.triangles.iter_mut().zip(local) {
         *t = if flip {

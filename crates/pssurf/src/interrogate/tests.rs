@@ -527,6 +527,59 @@ fn sampling_gives_surface_points_and_each_pieces_own_curvature() {
 }
 
 #[test]
+fn a_local_edit_changes_only_the_molecule_pieces_and_sample_pieces_resamples_them() {
+    let mut s = wavy_surface(411);
+    let level = 1;
+    let per = vertices_per_piece(level);
+    let before = sample_patches(&s, level, true);
+    let PsSurface::Functional(f) = &mut s else {
+        unreachable!()
+    };
+    let vertex = 17;
+    let c = f.coefficients()[vertex];
+    f.set_coefficients(vertex, [c[0] + 0.3, c[1] - 0.2, c[2] + 0.1])
+        .unwrap();
+    let molecule: Vec<usize> = f
+        .basis()
+        .triangulation()
+        .molecule(vertex)
+        .iter()
+        .flat_map(|&t| (0..6).map(move |sub| 6 * t as usize + sub))
+        .collect();
+    let after = sample_patches(&s, level, true);
+    let local = sample_pieces(&s, level, true, &molecule);
+    assert_eq!(local.mesh.positions.len(), molecule.len() * per);
+    for (j, &k) in molecule.iter().enumerate() {
+        for v in 0..per {
+            let (a, b) = (k * per + v, j * per + v);
+            // Bit-identical to sampling the whole surface.
+            assert_eq!(after.mesh.positions[a], local.mesh.positions[b]);
+            assert_eq!(after.mesh.normals[a], local.mesh.normals[b]);
+            assert_eq!(after.mesh.uvs[a], local.mesh.uvs[b]);
+            assert_eq!(after.curvature[a], local.curvature[b]);
+            assert_eq!(local.patch[b] as usize, k);
+        }
+    }
+    for t in &local.mesh.triangles {
+        assert!(t.iter().all(|&i| (i as usize) < local.mesh.positions.len()));
+    }
+    // Outside the molecule nothing moved (local support, Definition 2.23).
+    let mut moved = 0;
+    for k in 0..s.patch_count() {
+        let inside = molecule.contains(&k);
+        for v in k * per..(k + 1) * per {
+            let d = (after.mesh.positions[v] - before.mesh.positions[v]).norm();
+            if inside {
+                moved += usize::from(d > 1e-6);
+            } else {
+                assert!(d < 1e-14, "piece {k} moved by {d}");
+            }
+        }
+    }
+    assert!(moved > 0, "the edit moved nothing");
+}
+
+#[test]
 fn fairness_integrals_of_a_paraboloid_match_closed_forms() {
     // z = (x² + y²)/2 over the unit square, reproduced exactly. Its Gauss map covers the
     // solid angle of a unit square seen from distance 1 at a corner: ∫ K dA = π/6. The
