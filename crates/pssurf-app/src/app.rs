@@ -14,8 +14,9 @@ use crate::camera::OrbitCamera;
 use crate::display::{self, DisplaySettings, ObjectMesh, ViewMode};
 use crate::document::Document;
 use crate::edit::{self, VertexControl};
-use crate::gpu::FrameGeometry;
+use crate::gpu::{FrameGeometry, LineSet};
 use crate::panels::{Panel, PanelContext, default_panels};
+use crate::probe::{Probe, ProbeSettings, probe_at, probe_lines};
 use crate::scene::Scene;
 
 /// What is selected.
@@ -129,8 +130,13 @@ pub struct App {
     pub path_text: String,
     /// The numeric editor's copy of the selected vertex's control triangle.
     pub vertex_edit: Option<(usize, usize, VertexControl)>,
-    /// The last probed surface point: (object, u, v, curvature).
-    pub probe: Option<crate::view3d::Probe>,
+    /// The probed surface point.
+    pub probe: Option<Probe>,
+    /// What the probe shows.
+    pub probe_settings: ProbeSettings,
+    /// The probe's lines for the GPU.
+    pub probe_lines: Arc<LineSet>,
+    probe_key: Option<(u64, ProbeSettings)>,
     /// A control point being dragged: (object, vertex, point index).
     pub drag: Option<(usize, usize, usize)>,
     /// Frame the scene at the next draw.
@@ -163,6 +169,9 @@ impl App {
             gpu: false,
             vertex_edit: None,
             probe: None,
+            probe_settings: ProbeSettings::default(),
+            probe_lines: Arc::default(),
+            probe_key: None,
             drag: None,
             frame_pending: true,
             autosave: None,
@@ -366,6 +375,69 @@ impl App {
             .and_then(|o| self.cache.meshes.get(&o.revision))
     }
 
+    /// The diameter of the visible scene (1 when empty).
+    pub fn scene_size(&self) -> f64 {
+        display::bounds(self.cache.meshes.values())
+            .map(|(lo, hi)| (hi - lo).norm() as f64)
+            .filter(|d| *d > 0.0)
+            .unwrap_or(1.0)
+    }
+
+    /// Puts the probe on object `object` at parameters `uv` (removes it outside the domain).
+    pub fn set_probe(&mut self, object: usize, uv: nalgebra::Point2<f64>) {
+        let size = self.scene_size();
+        let alignment = self.probe_settings.alignment;
+        self.probe = probe_at(&self.doc.scene, object, uv, alignment, size);
+        self.probe_key = None;
+        if self.probe.is_some() {
+            self.selection.object = Some(object);
+            self.status = format!("probed {}", self.doc.scene.objects[object].name);
+        }
+        self.refresh_probe();
+    }
+
+    /// Recomputes the probe after its object changed, and its lines after the probe or its
+    /// settings changed.
+    pub fn refresh_probe(&mut self) {
+        if let Some(p) = &self.probe {
+            let stale = match self.doc.scene.objects.get(p.object) {
+                None => true,
+                Some(o) => o.revision != p.revision,
+            };
+            let realigned = self
+                .probe_key
+                .is_some_and(|(_, s)| s.alignment != self.probe_settings.alignment);
+            if stale || realigned {
+                let (object, uv) = (p.object, p.uv);
+                let size = self.scene_size();
+                self.probe = probe_at(
+                    &self.doc.scene,
+                    object,
+                    uv,
+                    self.probe_settings.alignment,
+                    size,
+                );
+            }
+        }
+        let key = self
+            .probe
+            .as_ref()
+            .map(|p| (p.revision, self.probe_settings));
+        if key == self.probe_key && self.probe_key.is_some() {
+            return;
+        }
+        let lines = self
+            .probe
+            .as_ref()
+            .map(|p| probe_lines(p, &self.probe_settings, self.scene_size()))
+            .unwrap_or_default();
+        self.probe_lines = Arc::new(LineSet {
+            generation: crate::scene::fresh_revision(),
+            lines,
+        });
+        self.probe_key = key;
+    }
+
     /// Fits the camera to the visible objects in a view of the given aspect ratio.
     pub fn frame_all(&mut self, aspect: f32) {
         self.update_geometry();
@@ -408,6 +480,8 @@ impl App {
                     crate::domain_view::ui(self, ui);
                     ui.separator();
                     crate::properties::display_ui(self, ui);
+                    ui.separator();
+                    crate::properties::probe_ui(self, ui);
                     let mut panels = std::mem::take(&mut self.panels);
                     for p in &mut panels {
                         egui::CollapsingHeader::new(p.title())

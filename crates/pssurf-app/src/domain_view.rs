@@ -67,8 +67,10 @@ pub fn pick_vertex(basis: &PsBasis, p: Point2<f64>, radius: f64) -> Option<usize
 /// Draws the domain view of the selected object and handles clicks.
 pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     let size = vec2(ui.available_width(), ui.available_width().min(320.0));
-    let (rect, response) = ui.allocate_exact_size(size, Sense::click());
-    let response = response.on_hover_text("Click a PS-triangle to select its vertex");
+    let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
+    let response = response.on_hover_text(
+        "Click a PS-triangle to select its vertex; Shift+click or Shift+drag moves the probe",
+    );
     response.widget_info(|| {
         egui::WidgetInfo::labeled(egui::accesskit::Role::Canvas, true, "domain view")
     });
@@ -144,8 +146,21 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
             Color32::from_rgb(230, 110, 0),
         ));
     }
+    if let Some(p) = app.probe.as_ref().filter(|p| p.object == i) {
+        shapes.push(Shape::circle_stroke(
+            map.to_screen(p.uv),
+            5.0,
+            Stroke::new(2.0, Color32::BLACK),
+        ));
+    }
     painter.extend(shapes);
-    if response.clicked()
+    let shift = ui.input(|inp| inp.modifiers.shift);
+    if shift
+        && (response.clicked() || response.dragged())
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        app.set_probe(i, map.to_domain(pos));
+    } else if response.clicked()
         && let Some(pos) = response.interact_pointer_pos()
     {
         let p = map.to_domain(pos);

@@ -55,6 +55,15 @@ pub struct FrameGeometry {
     pub history: Vec<LocalUpdate>,
 }
 
+/// Extra lines drawn over the scene (the probe's), uploaded when `generation` changes.
+#[derive(Clone, Debug, Default)]
+pub struct LineSet {
+    /// Identifies the content.
+    pub generation: u64,
+    /// Line-list vertices.
+    pub lines: Vec<LineVertex>,
+}
+
 /// Ranges rewritten in place between two generations (the sizes did not change).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LocalUpdate {
@@ -179,6 +188,7 @@ pub struct ViewRenderer {
     uniforms: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     buffers: Option<Buffers>,
+    extra: Option<(u64, wgpu::Buffer, u32)>,
     target: Option<Target>,
     /// Bumped whenever the target texture is recreated.
     pub target_generation: u64,
@@ -298,6 +308,7 @@ impl ViewRenderer {
             uniforms,
             bind_group,
             buffers: None,
+            extra: None,
             target: None,
             target_generation: 0,
             uploads: UploadCounts::default(),
@@ -330,6 +341,25 @@ impl ViewRenderer {
                 self.uploads.full += 1;
             }
         }
+    }
+
+    /// Uploads the extra lines if they changed.
+    pub fn upload_lines(&mut self, device: &wgpu::Device, set: &LineSet) {
+        if self
+            .extra
+            .as_ref()
+            .is_some_and(|(g, ..)| *g == set.generation)
+        {
+            return;
+        }
+        self.extra = (!set.lines.is_empty()).then(|| {
+            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("pssurf extra lines"),
+                contents: bytemuck::cast_slice(&set.lines),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+            (set.generation, buffer, set.lines.len() as u32)
+        });
     }
 
     fn ensure_target(&mut self, device: &wgpu::Device, size: [u32; 2]) {
@@ -413,10 +443,14 @@ impl ViewRenderer {
             pass.set_index_buffer(b.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..b.index_count, 0, 0..1);
         }
+        pass.set_pipeline(&self.lines);
         if b.line_count > 0 {
-            pass.set_pipeline(&self.lines);
             pass.set_vertex_buffer(0, b.lines.slice(..));
             pass.draw(0..b.line_count, 0..1);
+        }
+        if let Some((_, extra, count)) = &self.extra {
+            pass.set_vertex_buffer(0, extra.slice(..));
+            pass.draw(0..*count, 0..1);
         }
     }
 
@@ -562,6 +596,8 @@ impl ViewResources {
 pub struct ViewCallback {
     /// The geometry to draw.
     pub geometry: Arc<FrameGeometry>,
+    /// The probe's lines.
+    pub extra: Arc<LineSet>,
     /// Camera, light and mode.
     pub uniforms: Uniforms,
     /// The view's size in pixels.
@@ -579,6 +615,7 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
     ) -> Vec<wgpu::CommandBuffer> {
         if let Some(r) = resources.get_mut::<ViewResources>() {
             r.renderer.upload(device, queue, &self.geometry);
+            r.renderer.upload_lines(device, &self.extra);
             r.renderer
                 .render(device, queue, encoder, self.size, &self.uniforms);
             r.compositor.update(device, &r.renderer);

@@ -16,6 +16,7 @@ pub mod edit;
 pub mod gpu;
 pub mod headless;
 pub mod panels;
+pub mod probe;
 pub mod properties;
 pub mod scene;
 pub mod scene_tree;

@@ -18,6 +18,9 @@ struct Args {
     /// Mesa's software Vulkan).
     #[arg(long, value_name = "OUT.png")]
     screenshot: Option<PathBuf>,
+    /// Start with the probe on object OBJECT (0 is the first) at parameters (U, V).
+    #[arg(long, value_name = "OBJECT,U,V", allow_hyphen_values = true)]
+    probe: Option<String>,
     /// Window or screenshot size.
     #[arg(long, value_name = "WxH", default_value = "1400x900")]
     size: String,
@@ -32,6 +35,18 @@ fn parse_size(s: &str) -> Result<(f32, f32)> {
         bail!("--size must be between 200x150 and 8192x8192");
     }
     Ok((w, h))
+}
+
+fn parse_probe(s: &str) -> Result<(usize, f64, f64)> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [object, u, v] = parts[..] else {
+        bail!("--probe must look like 1,0.2,-0.1 (object, u, v)");
+    };
+    let (u, v): (f64, f64) = (u.parse()?, v.parse()?);
+    if !(u.is_finite() && v.is_finite()) {
+        bail!("--probe: u and v must be finite numbers");
+    }
+    Ok((object.parse()?, u, v))
 }
 
 fn load(files: &[PathBuf]) -> Result<App> {
@@ -51,6 +66,17 @@ fn main() -> Result<()> {
     let args = Args::parse();
     let (w, h) = parse_size(&args.size)?;
     let mut app = load(&args.files)?;
+    if let Some(text) = &args.probe {
+        let (object, u, v) = parse_probe(text)?;
+        if object >= app.doc.scene.objects.len() {
+            bail!("--probe: there is no object {object}");
+        }
+        app.update_geometry();
+        app.set_probe(object, nalgebra::Point2::new(u, v));
+        if app.probe.is_none() {
+            bail!("--probe: ({u}, {v}) lies outside the domain of object {object}");
+        }
+    }
     if let Some(out) = args.screenshot {
         let picture = pssurf_app::headless::screenshot(app, w, h).map_err(anyhow::Error::msg)?;
         let mut png = Vec::new();

@@ -8,6 +8,7 @@ use pssurf_viz::plot::Range;
 use crate::app::App;
 use crate::display::ViewMode;
 use crate::edit;
+use crate::probe::Alignment;
 
 /// Draws the properties of the selection.
 pub fn ui(app: &mut App, ui: &mut egui::Ui) {
@@ -209,6 +210,58 @@ pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
         ui.checkbox(&mut d.overlays.control, "control triangles");
         ui.checkbox(&mut d.overlays.boundary, "boundary");
     });
+}
+
+/// The probe's settings and values.
+pub fn probe_ui(app: &mut App, ui: &mut egui::Ui) {
+    ui.heading("Probe");
+    ui.label("Click the surface (Shift+drag to move), or Shift+click the domain view.");
+    let s = &mut app.probe_settings;
+    ui.horizontal(|ui| {
+        ui.label("cross-planes:");
+        ui.radio_value(&mut s.alignment, Alignment::Principal, "principal")
+            .on_hover_text("Along the principal directions: the sections have curvatures κ1, κ2");
+        ui.radio_value(&mut s.alignment, Alignment::Parametric, "parametric")
+            .on_hover_text("Along the parameter directions s_u and s_v");
+    });
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut s.planes, "planes");
+        ui.checkbox(&mut s.sections, "sections");
+        ui.checkbox(&mut s.circles, "osculating circles");
+        ui.checkbox(&mut s.glyphs, "normal, directions");
+    });
+    let Some(p) = &app.probe else {
+        ui.weak("no probe");
+        return;
+    };
+    egui::Grid::new("probe values")
+        .num_columns(2)
+        .show(ui, |ui| {
+            let mut row = |name: &str, value: String| {
+                ui.label(name);
+                ui.monospace(value);
+                ui.end_row();
+            };
+            row("u, v", format!("{:.6}, {:.6}", p.uv.x, p.uv.y));
+            let q = p.point;
+            row("point", format!("{:.5}, {:.5}, {:.5}", q.x, q.y, q.z));
+            match (&p.curvature, &p.cross) {
+                (Some(c), Some(x)) => {
+                    row("K", format!("{:.6e}", c.gaussian));
+                    row("H", format!("{:.6e}", c.mean));
+                    row("κ1", format!("{:.6e}", c.k1));
+                    row("κ2", format!("{:.6e}", c.k2));
+                    let n = c.normal;
+                    row("normal", format!("{:.4}, {:.4}, {:.4}", n.x, n.y, n.z));
+                    row("κn plane 1", format!("{:.6e}", x.curvatures[0]));
+                    row("κn plane 2", format!("{:.6e}", x.curvatures[1]));
+                }
+                _ => row("curvature", "undefined (singular point)".into()),
+            }
+        });
+    if ui.button("Remove probe").clicked() {
+        app.probe = None;
+    }
 }
 
 /// The UI name of a view mode.

@@ -3,41 +3,12 @@
 
 use egui::{Color32, Pos2, Rect, Sense, Stroke, pos2, vec2};
 use nalgebra::{Point2, Point3, Vector3};
-use pssurf::interrogate::Curvature;
-use pssurf::surface::{Cursor, ParametricSurface};
 
 use crate::app::App;
 use crate::camera::ray_triangles;
 use crate::display::ViewMode;
 use crate::edit;
 use crate::gpu::{Uniforms, ViewCallback};
-
-/// A probed surface point.
-#[derive(Clone, Debug)]
-pub struct Probe {
-    /// The object.
-    pub object: usize,
-    /// The parameters.
-    pub uv: Point2<f64>,
-    /// The point in the scene.
-    pub point: Vector3<f64>,
-    /// The curvature there (in scene units), or None at a singular point.
-    pub curvature: Option<Curvature>,
-}
-
-impl Probe {
-    /// One line for the status bar.
-    pub fn summary(&self) -> String {
-        let head = format!("u,v = ({:.4}, {:.4})", self.uv.x, self.uv.y);
-        match &self.curvature {
-            Some(c) => format!(
-                "{head}  K = {:.4e}  H = {:.4e}  κ1 = {:.4e}  κ2 = {:.4e}",
-                c.gaussian, c.mean, c.k1, c.k2
-            ),
-            None => format!("{head}  curvature undefined (singular point)"),
-        }
-    }
-}
 
 /// The camera uniforms for a view of `size` pixels.
 pub fn uniforms(app: &App, size: [u32; 2]) -> Uniforms {
@@ -82,9 +53,11 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
         (rect.width() * ppp).round().max(1.0) as u32,
         (rect.height() * ppp).round().max(1.0) as u32,
     ];
+    app.refresh_probe();
     if app.gpu {
         let cb = ViewCallback {
             geometry: app.cache.geometry.clone(),
+            extra: app.probe_lines.clone(),
             uniforms: uniforms(app, size),
             size,
         };
@@ -100,9 +73,14 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
             Color32::GRAY,
         );
     }
+    probe_planes(app, ui, rect);
     handles_and_drag(app, ui, rect, &response);
-    camera_input(app, ui, rect, &response);
-    if response.clicked()
+    let shift = ui.input(|i| i.modifiers.shift);
+    let probing = shift && app.drag.is_none() && response.dragged_by(egui::PointerButton::Primary);
+    if !probing {
+        camera_input(app, ui, rect, &response);
+    }
+    if (response.clicked() || probing)
         && let Some(pos) = response.interact_pointer_pos()
     {
         probe(app, rect, pos);
@@ -114,6 +92,32 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
             .circle_stroke(s, 5.0, Stroke::new(2.0, Color32::BLACK));
     }
     legend(app, ui, rect);
+}
+
+/// The probe's two cross-planes, translucent, over the view.
+fn probe_planes(app: &App, ui: &egui::Ui, rect: Rect) {
+    let Some(p) = &app.probe else {
+        return;
+    };
+    if !app.probe_settings.planes {
+        return;
+    }
+    let painter = ui.painter_at(rect);
+    for (k, corners) in crate::probe::plane_corners(p, app.scene_size())
+        .iter()
+        .enumerate()
+    {
+        let pts: Option<Vec<Pos2>> = corners.iter().map(|c| project(app, rect, *c)).collect();
+        let Some(pts) = pts else {
+            continue;
+        };
+        let [r, g, b] = crate::probe::COLORS[k];
+        painter.add(egui::Shape::convex_polygon(
+            pts,
+            Color32::from_rgba_unmultiplied(r, g, b, 40),
+            Stroke::new(1.0, Color32::from_rgba_unmultiplied(r, g, b, 160)),
+        ));
+    }
 }
 
 fn camera_input(app: &mut App, ui: &egui::Ui, rect: Rect, r: &egui::Response) {
@@ -189,40 +193,12 @@ pub fn probe(app: &mut App, rect: Rect, pos: Pos2) {
             best = Some((i, d, Point2::new(uv[0], uv[1])));
         }
     }
-    let Some((i, _, uv)) = best else {
-        app.probe = None;
-        return;
-    };
-    let o = &app.doc.scene.objects[i];
-    let surface = o.surface.general();
-    let mut cursor: Cursor = surface.cursor_near(uv);
-    let Ok(j) = surface.jet_with(uv, &mut cursor) else {
-        app.probe = None;
-        return;
-    };
-    let s = o.transform.scale;
-    let curvature = Curvature::from_jet(&j.jet).ok().map(|mut c| {
-        // Curvatures scale as 1/length (K as 1/length²).
-        c.gaussian /= s * s;
-        c.mean /= s;
-        c.k1 /= s;
-        c.k2 /= s;
-        c
-    });
-    let point = o
-        .transform
-        .matrix()
-        .transform_point(&Point3::from(j.jet.value))
-        .coords;
-    app.probe = Some(Probe {
-        object: i,
-        uv,
-        point,
-        curvature,
-    });
-    app.selection.object = Some(i);
-    if let Some(p) = &app.probe {
-        app.status = format!("probed {}", app.doc.scene.objects[p.object].name);
+    match best {
+        Some((i, _, uv)) => app.set_probe(i, uv),
+        None => {
+            app.probe = None;
+            app.refresh_probe();
+        }
     }
 }
 

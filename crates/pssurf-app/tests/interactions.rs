@@ -304,3 +304,70 @@ fn opening_a_bad_file_shows_a_message_and_keeps_the_scene() {
         );
     }
 }
+
+/// A click with Shift held.
+fn shift_click(h: &mut Harness<'_, App>, pos: Pos2) {
+    h.event(Event::PointerMoved(pos));
+    h.event(Event::ModifiersChanged(Modifiers::SHIFT));
+    h.run_steps(1);
+    for pressed in [true, false] {
+        h.event(Event::PointerButton {
+            pos,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::SHIFT,
+        });
+        h.run_steps(1);
+    }
+    h.event(Event::ModifiersChanged(Modifiers::NONE));
+    h.run_steps(1);
+}
+
+#[test]
+fn shift_clicking_the_domain_view_probes_the_paraboloid_with_its_exact_curvature() {
+    let mut app = App::demo();
+    app.selection.object = Some(1);
+    let mut h = harness(app);
+    let rect = h.get_by_label("domain view").rect();
+    let pos = rect.center() + vec2(23.0, -11.0);
+    shift_click(&mut h, pos);
+    let app = h.state();
+    let p = app.probe.clone().expect("a probe");
+    assert_eq!(p.object, 1);
+    assert_eq!(
+        app.selection.vertex, None,
+        "Shift+click probes instead of selecting"
+    );
+    // z = (u² + v²)/2: K = 1/W⁴, κ1 = 1/W, κ2 = 1/W³ with W = √(1 + u² + v²).
+    let (u, v) = (p.uv.x, p.uv.y);
+    let w = (1.0 + u * u + v * v).sqrt();
+    let c = p.curvature.as_ref().unwrap();
+    assert!((c.gaussian - w.powi(-4)).abs() < 1e-12);
+    assert!((c.k1 - 1.0 / w).abs() < 1e-12 && (c.k2 - w.powi(-3)).abs() < 1e-12);
+    let cross = p.cross.as_ref().unwrap();
+    assert!((cross.curvatures[0] - c.k1).abs() < 1e-12);
+    assert!((cross.curvatures[1] - c.k2).abs() < 1e-12);
+    // The sections lie on the paraboloid and in their planes (scene coordinates).
+    let inverse = app.doc.scene.objects[1]
+        .transform
+        .matrix()
+        .try_inverse()
+        .unwrap();
+    for k in 0..2 {
+        let plane = c.normal.cross(&cross.directions[k]);
+        assert!(cross.sections[k].len() > 50);
+        for q in &cross.sections[k] {
+            let l = inverse.transform_point(&nalgebra::Point3::from(*q));
+            assert!((l.z - 0.5 * (l.x * l.x + l.y * l.y)).abs() < 1e-12);
+            assert!((q - p.point).dot(&plane).abs() < 1e-12);
+        }
+    }
+    assert!(!app.probe_lines.lines.is_empty());
+    // Parametric alignment turns the planes to s_u and s_v: here the x and y axes.
+    h.get_by_label("parametric").click();
+    h.run_steps(2);
+    let p = h.state().probe.clone().unwrap();
+    let d = p.cross.unwrap().directions;
+    let su = nalgebra::Vector3::new(1.0, 0.0, u).normalize();
+    assert!((d[0] - su).norm() < 1e-12, "{:?}", d[0]);
+}

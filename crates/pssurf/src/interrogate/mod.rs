@@ -8,6 +8,7 @@
 pub mod curvature;
 pub mod fairness;
 pub mod sample;
+pub mod section;
 #[cfg(test)]
 mod tests;
 
@@ -19,3 +20,4 @@ pub use fairness::{
     DEFAULT_QUADRATURE_DEGREE, Fairness, FairnessIntegrals, QuantityStats, fairness,
 };
 pub use sample::{SampledSurface, sample_patches, sample_pieces, vertices_per_piece};
+pub use section::{SectionCurve, SectionError, SectionOptions, plane_section};

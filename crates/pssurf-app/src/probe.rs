@@ -1,0 +1,274 @@
+//! The probe (seed 003): a point on a surface with its exact curvature, two cross-planes
+//! through the normal in parametric or principal alignment, the curves in which they cut the
+//! surface (normal sections, traced exactly), their osculating circles, the normal and the
+//! principal directions.
+
+use nalgebra::{Point2, Point3, Vector3};
+use pssurf::interrogate::{Curvature, SectionOptions, plane_section};
+use pssurf::surface::{Cursor, ParametricSurface};
+
+use crate::display::LineVertex;
+use crate::scene::Scene;
+
+/// How the two cross-planes are turned about the normal.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Alignment {
+    /// Along the principal directions (the sections have curvatures κ1 and κ2).
+    #[default]
+    Principal,
+    /// Along the parameter directions s_u and s_v.
+    Parametric,
+}
+
+/// What the probe shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProbeSettings {
+    /// Alignment of the cross-planes.
+    pub alignment: Alignment,
+    /// Draw the two cross-planes.
+    pub planes: bool,
+    /// Draw the curves in which they cut the surface.
+    pub sections: bool,
+    /// Draw the osculating circles of those curves.
+    pub circles: bool,
+    /// Draw the normal and the principal directions.
+    pub glyphs: bool,
+}
+
+impl Default for ProbeSettings {
+    fn default() -> Self {
+        ProbeSettings {
+            alignment: Alignment::Principal,
+            planes: true,
+            sections: true,
+            circles: true,
+            glyphs: true,
+        }
+    }
+}
+
+/// A probed surface point, everything in scene coordinates.
+#[derive(Clone, Debug)]
+pub struct Probe {
+    /// The object.
+    pub object: usize,
+    /// The object's revision when probed (the probe is recomputed when it changes).
+    pub revision: u64,
+    /// The parameters.
+    pub uv: Point2<f64>,
+    /// The point.
+    pub point: Vector3<f64>,
+    /// The curvature there (in scene units), or None at a singular point.
+    pub curvature: Option<Curvature>,
+    /// The cross-planes and what lies in them (None at a singular point).
+    pub cross: Option<CrossPlanes>,
+}
+
+/// The two cross-planes of a probe.
+#[derive(Clone, Debug)]
+pub struct CrossPlanes {
+    /// Unit tangent directions of the two planes (each plane holds it and the normal).
+    pub directions: [Vector3<f64>; 2],
+    /// The normal curvature in each direction (scene units).
+    pub curvatures: [f64; 2],
+    /// The curves in which the planes cut the surface.
+    pub sections: [Vec<Vector3<f64>>; 2],
+}
+
+impl Probe {
+    /// One line for the status bar.
+    pub fn summary(&self) -> String {
+        let head = format!("u,v = ({:.4}, {:.4})", self.uv.x, self.uv.y);
+        match &self.curvature {
+            Some(c) => format!(
+                "{head}  K = {:.4e}  H = {:.4e}  κ1 = {:.4e}  κ2 = {:.4e}",
+                c.gaussian, c.mean, c.k1, c.k2
+            ),
+            None => format!("{head}  curvature undefined (singular point)"),
+        }
+    }
+
+    /// The unit normal (scene coordinates), when defined.
+    pub fn normal(&self) -> Option<Vector3<f64>> {
+        self.curvature.as_ref().map(|c| c.normal)
+    }
+}
+
+/// Probes object `object` of `scene` at `uv`; `size` is the scene's diameter, which sets how
+/// far the sections are traced. None outside the domain.
+pub fn probe_at(
+    scene: &Scene,
+    object: usize,
+    uv: Point2<f64>,
+    alignment: Alignment,
+    size: f64,
+) -> Option<Probe> {
+    let o = scene.objects.get(object)?;
+    let surface = o.surface.general();
+    let mut cursor: Cursor = surface.cursor_near(uv);
+    let jet = surface.jet_with(uv, &mut cursor).ok()?.jet;
+    let m = o.transform.matrix();
+    let rotation = m.fixed_view::<3, 3>(0, 0).into_owned() / o.transform.scale;
+    let s = o.transform.scale;
+    let to_scene = |p: &Vector3<f64>| m.transform_point(&Point3::from(*p)).coords;
+    let local = Curvature::from_jet(&jet).ok();
+    let cross = local.as_ref().map(|c| {
+        let directions = match alignment {
+            Alignment::Principal => [c.dir1, c.dir2],
+            Alignment::Parametric => [jet.dx.normalize(), jet.dy.normalize()],
+        };
+        let opts = SectionOptions {
+            step: size / (300.0 * s),
+            length: 0.25 * size / s,
+        };
+        let sections = directions.map(|d| {
+            plane_section(surface, uv, c.normal.cross(&d), opts)
+                .map(|curve| curve.points.iter().map(to_scene).collect())
+                .unwrap_or_default()
+        });
+        CrossPlanes {
+            directions: directions.map(|d| rotation * d),
+            curvatures: directions.map(|d| c.normal_curvature(d) / s),
+            sections,
+        }
+    });
+    let curvature = local.map(|mut c| {
+        // Curvatures scale as 1/length (K as 1/length²); directions rotate.
+        c.gaussian /= s * s;
+        c.mean /= s;
+        c.k1 /= s;
+        c.k2 /= s;
+        c.normal = rotation * c.normal;
+        c.dir1 = rotation * c.dir1;
+        c.dir2 = rotation * c.dir2;
+        c
+    });
+    Some(Probe {
+        object,
+        revision: o.revision,
+        uv,
+        point: to_scene(&jet.value),
+        curvature,
+        cross,
+    })
+}
+
+/// The colours of the first and second cross-plane, and of the normal.
+pub const COLORS: [[u8; 3]; 3] = [[220, 60, 30], [30, 90, 220], [20, 150, 60]];
+
+/// The probe's lines for the 3D view (sections, osculating circles, glyphs); `size` is the
+/// scene's diameter.
+pub fn probe_lines(p: &Probe, settings: &ProbeSettings, size: f64) -> Vec<LineVertex> {
+    let mut out = Vec::new();
+    let (Some(c), Some(cross)) = (&p.curvature, &p.cross) else {
+        return out;
+    };
+    let n = c.normal;
+    let glyph = 0.12 * size;
+    for k in 0..2 {
+        let color = COLORS[k];
+        if settings.sections {
+            polyline(&cross.sections[k], color, &mut out);
+        }
+        if settings.circles {
+            let circle = osculating_circle(
+                p.point,
+                n,
+                cross.directions[k],
+                cross.curvatures[k],
+                0.6 * size,
+            );
+            polyline(&circle, color, &mut out);
+        }
+        if settings.glyphs {
+            let d = [c.dir1, c.dir2][k];
+            let dark = color.map(|x| x / 2);
+            polyline(&[p.point - glyph * d, p.point + glyph * d], dark, &mut out);
+        }
+    }
+    if settings.glyphs {
+        polyline(&[p.point, p.point + 1.5 * glyph * n], COLORS[2], &mut out);
+    }
+    out
+}
+
+/// The corners of the two cross-planes (squares of side 0.25·`size` centred at the point), for
+/// drawing them translucent.
+pub fn plane_corners(p: &Probe, size: f64) -> Vec<[Vector3<f64>; 4]> {
+    let (Some(c), Some(cross)) = (&p.curvature, &p.cross) else {
+        return Vec::new();
+    };
+    let h = 0.125 * size;
+    cross
+        .directions
+        .iter()
+        .map(|d| {
+            let (a, b) = (d * h, c.normal * h);
+            [
+                p.point - a - b,
+                p.point + a - b,
+                p.point + a + b,
+                p.point - a + b,
+            ]
+        })
+        .collect()
+}
+
+/// The osculating circle of the normal section in direction `d` (normal curvature `kappa`)
+/// at `point`: centre point + n/κ, radius 1/|κ|, in the plane of d and n. A large circle is
+/// cut to an arc of length about `size` around the point; a flat section is a line.
+pub fn osculating_circle(
+    point: Vector3<f64>,
+    n: Vector3<f64>,
+    d: Vector3<f64>,
+    kappa: f64,
+    size: f64,
+) -> Vec<Vector3<f64>> {
+    let half = 0.5 * size;
+    if kappa.abs() * half < 1e-9 {
+        return vec![point - half * d, point + half * d];
+    }
+    let r = 1.0 / kappa;
+    let centre = point + n * r;
+    let reach = (half * kappa.abs()).min(std::f64::consts::PI);
+    let steps = 128;
+    (0..=steps)
+        .map(|i| {
+            let t = -reach + 2.0 * reach * i as f64 / steps as f64;
+            // t = 0 is the point; the circle turns towards the centre.
+            centre - n * (r * t.cos()) + d * (r.abs() * t.sin())
+        })
+        .collect()
+}
+
+fn polyline(points: &[Vector3<f64>], color: [u8; 3], out: &mut Vec<LineVertex>) {
+    let color = [color[0], color[1], color[2], 255];
+    for w in points.windows(2) {
+        for p in w {
+            out.push(LineVertex {
+                position: p.map(|x| x as f32).into(),
+                color,
+            });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_osculating_circle_passes_through_the_point_with_radius_one_over_kappa() {
+        let (p, n, d) = (Vector3::new(1.0, 2.0, 3.0), Vector3::z(), Vector3::x());
+        for kappa in [2.0, -0.5, 5.0] {
+            let c = osculating_circle(p, n, d, kappa, 10.0);
+            let centre = p + n / kappa;
+            for q in &c {
+                assert!(((q - centre).norm() - 1.0 / kappa.abs()).abs() < 1e-12);
+                assert!((q - p).y.abs() < 1e-15, "in the plane of d and n");
+            }
+            assert!((c[c.len() / 2] - p).norm() < 1e-12, "through the point");
+        }
+        assert_eq!(osculating_circle(p, n, d, 0.0, 2.0).len(), 2);
+    }
+}
