@@ -480,8 +480,9 @@ impl App {
                     crate::domain_view::ui(self, ui);
                     ui.separator();
                     crate::properties::display_ui(self, ui);
-                    ui.separator();
-                    crate::properties::probe_ui(self, ui);
+                    egui::CollapsingHeader::new("Probe")
+                        .default_open(false)
+                        .show(ui, |ui| crate::properties::probe_ui(self, ui));
                     let mut panels = std::mem::take(&mut self.panels);
                     for p in &mut panels {
                         egui::CollapsingHeader::new(p.title())

@@ -214,7 +214,6 @@ pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
 
 /// The probe's settings and values.
 pub fn probe_ui(app: &mut App, ui: &mut egui::Ui) {
-    ui.heading("Probe");
     ui.label("Click the surface (Shift+drag to move), or Shift+click the domain view.");
     let s = &mut app.probe_settings;
     ui.horizontal(|ui| {

@@ -1,5 +1,6 @@
 //! The 3D view: orbit (left drag), pan (right or middle drag), zoom (wheel), frame (double
-//! click or F); click to probe the surface; drag the selected vertex's control points.
+//! click or F); click to probe the surface, Shift+drag to move the probe; drag the selected
+//! vertex's control points in the view plane, or with Shift along the surface normal.
 
 use egui::{Color32, Pos2, Rect, Sense, Stroke, pos2, vec2};
 use nalgebra::{Point2, Point3, Vector3};
@@ -250,7 +251,8 @@ fn handles_and_drag(app: &mut App, ui: &egui::Ui, rect: Rect, r: &egui::Response
     if let Some((i, v, k)) = app.drag {
         if r.dragged_by(egui::PointerButton::Primary) {
             let d = r.drag_delta();
-            drag_point(app, rect, (i, v, k), d);
+            let along_normal = ui.input(|i| i.modifiers.shift);
+            drag_point(app, rect, (i, v, k), d, along_normal);
         }
         if r.drag_stopped() {
             app.drag = None;
@@ -259,9 +261,18 @@ fn handles_and_drag(app: &mut App, ui: &egui::Ui, rect: Rect, r: &egui::Response
     }
 }
 
-/// Moves control point `k` of vertex `v` of object `i` by a screen displacement, in the view
-/// plane (for a functional surface: its height, by the vertical displacement).
-pub fn drag_point(app: &mut App, rect: Rect, (i, v, k): (usize, usize, usize), d: egui::Vec2) {
+/// Moves control point `k` of vertex `v` of object `i` by a screen displacement: in the view
+/// plane, or with `along_normal` along the surface normal at the vertex (the normal of its
+/// control triangle, which spans the tangent plane there, Theorem 2.25) by the part of the
+/// displacement along the normal's screen image. For a functional surface only the height
+/// changes, by the vertical displacement.
+pub fn drag_point(
+    app: &mut App,
+    rect: Rect,
+    (i, v, k): (usize, usize, usize),
+    d: egui::Vec2,
+    along_normal: bool,
+) {
     if d == egui::Vec2::ZERO {
         return;
     }
@@ -270,12 +281,20 @@ pub fn drag_point(app: &mut App, rect: Rect, (i, v, k): (usize, usize, usize), d
     let (right, up) = (right.cast::<f64>(), up.cast::<f64>());
     let o = &app.doc.scene.objects[i];
     let mut c = edit::vertex_control(&o.surface, v);
-    let world = per_pixel * (d.x as f64 * right - d.y as f64 * up);
+    let mut world = per_pixel * (d.x as f64 * right - d.y as f64 * up);
     let t = o.transform;
-    let inverse = t
-        .matrix()
-        .try_inverse()
-        .unwrap_or_else(nalgebra::Matrix4::identity);
+    let m = t.matrix();
+    if along_normal && !c.functional {
+        let [a, b, e] = c.points.map(|p| m.transform_point(&Point3::from(p)).coords);
+        if let Some(n) = (b - a).cross(&(e - a)).try_normalize(1e-300) {
+            // The normal's image in the view plane; moving by s·n moves the point on the
+            // screen by s·|n_view|.
+            let n_view = n - n.dot(&right.cross(&up)) * right.cross(&up);
+            let visible = n_view.norm().max(0.2);
+            world = n * (world.dot(&(n_view / n_view.norm().max(1e-12))) / visible);
+        }
+    }
+    let inverse = m.try_inverse().unwrap_or_else(nalgebra::Matrix4::identity);
     let local = inverse.transform_vector(&world);
     if c.functional {
         c.points[k].z -= d.y as f64 * per_pixel / t.scale;

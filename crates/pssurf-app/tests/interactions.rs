@@ -364,10 +364,35 @@ fn shift_clicking_the_domain_view_probes_the_paraboloid_with_its_exact_curvature
     }
     assert!(!app.probe_lines.lines.is_empty());
     // Parametric alignment turns the planes to s_u and s_v: here the x and y axes.
+    h.get_by_label("Probe").click();
+    h.run_steps(2);
     h.get_by_label("parametric").click();
     h.run_steps(2);
     let p = h.state().probe.clone().unwrap();
     let d = p.cross.unwrap().directions;
     let su = nalgebra::Vector3::new(1.0, 0.0, u).normalize();
     assert!((d[0] - su).norm() < 1e-12, "{:?}", d[0]);
+}
+
+#[test]
+fn a_shift_drag_moves_a_control_point_along_the_surface_normal() {
+    let mut app = App::demo();
+    app.update_geometry();
+    app.frame_all(1.5);
+    let rect = egui::Rect::from_min_size(Pos2::ZERO, vec2(900.0, 600.0));
+    let v = 9;
+    let before = vertex_control(&app.doc.scene.objects[1].surface, v);
+    let [a, b, c] = before.points;
+    let normal = (b - a).cross(&(c - a)).normalize();
+    pssurf_app::view3d::drag_point(&mut app, rect, (1, v, 2), vec2(4.0, -25.0), true);
+    let after = vertex_control(&app.doc.scene.objects[1].surface, v);
+    let moved = after.points[2] - before.points[2];
+    assert!(moved.norm() > 1e-3, "did not move");
+    assert!(moved.cross(&normal).norm() < 1e-12 * moved.norm().max(1.0));
+    assert_eq!(after.points[..2], before.points[..2]);
+    // Without Shift the point moves in the view plane, not along the normal.
+    pssurf_app::view3d::drag_point(&mut app, rect, (1, v, 2), vec2(25.0, 0.0), false);
+    let again = vertex_control(&app.doc.scene.objects[1].surface, v);
+    let step = again.points[2] - after.points[2];
+    assert!(step.cross(&normal).norm() > 1e-3);
 }
