@@ -141,6 +141,8 @@ pub struct App {
     pub drag: Option<(usize, usize, usize)>,
     /// Frame the scene at the next draw.
     pub frame_pending: bool,
+    /// The "New surface" dialog.
+    pub new_surface: crate::create::NewSurface,
     /// Where autosaves go (None: no autosave).
     pub autosave: Option<PathBuf>,
     last_autosave: f64,
@@ -174,6 +176,7 @@ impl App {
             probe_key: None,
             drag: None,
             frame_pending: true,
+            new_surface: Default::default(),
             autosave: None,
             last_autosave: 0.0,
         }
@@ -500,6 +503,7 @@ impl App {
                 });
             });
         egui::CentralPanel::no_frame().show(ui, |ui| crate::view3d::ui(self, ui));
+        crate::create::window(self, ui.ctx());
         self.error_window(ui.ctx());
     }
 
@@ -533,6 +537,24 @@ impl App {
                     .clicked()
                 {
                     self.export_selected();
+                }
+            });
+            ui.menu_button("New", |ui| {
+                if ui
+                    .button("UPS patch…")
+                    .on_hover_text("A 3–6-sided UPS patch interpolating a height formula")
+                    .clicked()
+                {
+                    self.new_surface.shape = crate::create::Shape::Formula;
+                    self.new_surface.open = true;
+                }
+                if ui
+                    .button("Quadric…")
+                    .on_hover_text("z = a x² + b xy + c y², reproduced exactly")
+                    .clicked()
+                {
+                    self.new_surface.shape = crate::create::Shape::Quadric;
+                    self.new_surface.open = true;
                 }
             });
             ui.menu_button("Edit", |ui| {

@@ -1,9 +1,9 @@
 //! The built-in demo scene: a curvature-coloured UPS patch and a NURPS paraboloid.
 
-use nalgebra::{Point2, Vector3};
+use nalgebra::Point2;
 use pssurf::ps::Hermite;
-use pssurf::surface::{Surface, UpsSurface};
-use pssurf::ups::{Lattice, LatticePolygon, Ups, UpsGrid};
+use pssurf::surface::Surface;
+use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface};
 
 use crate::scene::{Scene, SceneObject, Transform};
 
@@ -24,15 +24,15 @@ pub fn wave_patch(size: i64) -> Surface {
         LatticePolygon::standard(6, size).expect("standard hexagon"),
     )
     .expect("a standard hexagon is a valid lattice polygon");
-    let ups = Ups::hermite(grid, |p| {
+    let ups = graph_surface(grid, GraphKind::Parametric, |p| {
         let (s, c) = ((2.2 * p.x).sin(), (1.7 * p.y).cos());
         Hermite {
-            value: Vector3::new(p.x, p.y, 0.35 * s * c + 0.1 * p.x * p.y),
-            dx: Vector3::new(1.0, 0.0, 0.35 * 2.2 * (2.2 * p.x).cos() * c + 0.1 * p.y),
-            dy: Vector3::new(0.0, 1.0, -0.35 * 1.7 * s * (1.7 * p.y).sin() + 0.1 * p.x),
+            value: 0.35 * s * c + 0.1 * p.x * p.y,
+            dx: 0.35 * 2.2 * (2.2 * p.x).cos() * c + 0.1 * p.y,
+            dy: -0.35 * 1.7 * s * (1.7 * p.y).sin() + 0.1 * p.x,
         }
     });
-    Surface::from(UpsSurface::Parametric(ups))
+    Surface::from(ups)
 }
 
 /// The paraboloid z = (x² + y²)/2 over a hexagon of radius 1 as a NURPS (all weights 1; PS
@@ -44,15 +44,12 @@ pub fn paraboloid(size: i64) -> Surface {
         LatticePolygon::standard(6, size).expect("standard hexagon"),
     )
     .expect("a standard hexagon is a valid lattice polygon");
-    let poly = Ups::hermite(grid.clone(), |p| Hermite {
-        value: Vector3::new(p.x, p.y, 0.5 * (p.x * p.x + p.y * p.y)),
-        dx: Vector3::new(1.0, 0.0, p.x),
-        dy: Vector3::new(0.0, 1.0, p.y),
+    let ups = graph_surface(grid, GraphKind::Rational, |p| Hermite {
+        value: 0.5 * (p.x * p.x + p.y * p.y),
+        dx: p.x,
+        dy: p.y,
     });
-    let points = poly.vertex_values();
-    let weights = vec![[1.0; 3]; points.len()];
-    let rational = Ups::rational(grid, points, weights).expect("positive weights");
-    Surface::from(UpsSurface::Rational(rational))
+    Surface::from(ups)
 }
 
 /// The demo scene.

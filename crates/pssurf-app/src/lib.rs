@@ -8,6 +8,7 @@
 
 pub mod app;
 pub mod camera;
+pub mod create;
 pub mod demo;
 pub mod display;
 pub mod document;

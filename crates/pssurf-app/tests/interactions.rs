@@ -396,3 +396,52 @@ fn a_shift_drag_moves_a_control_point_along_the_surface_normal() {
     let step = again.points[2] - after.points[2];
     assert!(step.cross(&normal).norm() > 1e-3);
 }
+
+#[test]
+fn the_new_quadric_dialog_adds_an_exact_hyperbolic_paraboloid_that_undo_removes() {
+    let mut h = harness(App::demo());
+    h.get_by_label("New").click();
+    h.run_steps(2);
+    h.get_by_label("Quadric…").click();
+    h.run_steps(2);
+    h.get_by_label("a (x²)").set_value_accesskit(0.8);
+    h.get_by_label("c (y²)").set_value_accesskit(-0.3);
+    h.get_by_label("b (xy)").set_value_accesskit(0.25);
+    h.run_steps(2);
+    h.get_by_label("Create").click();
+    h.run_steps(3);
+    let app = h.state();
+    assert_eq!(app.doc.scene.objects.len(), 3, "status: {}", app.status);
+    assert_eq!(app.selection.object, Some(2));
+    let o = &app.doc.scene.objects[2];
+    assert!(o.name.starts_with("hyperbolic paraboloid"), "{}", o.name);
+    let s = o.surface.general();
+    let tri = s.basis().triangulation();
+    for t in (0..tri.triangle_count()).step_by(5) {
+        let v = tri.triangle(t);
+        let c: Point2<f64> =
+            ((tri.vertex(v[0]).coords + tri.vertex(v[1]).coords + tri.vertex(v[2]).coords) / 3.0)
+                .into();
+        let p = s.jet_with(c, &mut s.cursor_near(c)).unwrap().jet.value;
+        let z = 0.8 * c.x * c.x + 0.25 * c.x * c.y - 0.3 * c.y * c.y;
+        assert!((p - nalgebra::Vector3::new(c.x, c.y, z)).norm() < 1e-12);
+    }
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().doc.scene.objects.len(), 2);
+}
+
+#[test]
+fn the_new_ups_dialog_reports_a_bad_formula_and_adds_nothing() {
+    let mut app = App::demo();
+    app.new_surface.open = true;
+    app.new_surface.formula = "sqrt(x) + t".into();
+    let mut h = harness(app);
+    h.get_by_label("Create").click();
+    h.run_steps(2);
+    let app = h.state();
+    assert_eq!(app.doc.scene.objects.len(), 2);
+    let e = app.new_surface.error.clone().expect("an error");
+    assert!(e.contains("`t`"), "{e}");
+    assert!(app.new_surface.open);
+}

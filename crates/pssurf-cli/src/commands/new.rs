@@ -3,11 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
-use nalgebra::{Point2, Vector3};
+use nalgebra::Point2;
 use pssurf::expr::HeightFunction;
-use pssurf::ps::Hermite;
-use pssurf::surface::{Surface, UpsSurface};
-use pssurf::ups::{Lattice, LatticePolygon, Ups, UpsGrid};
+use pssurf::surface::Surface;
+use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface_from_formula};
 
 /// What to create.
 #[derive(clap::Subcommand, Debug)]
@@ -94,30 +93,11 @@ pub fn run(what: &NewWhat) -> Result<()> {
     };
     let grid = UpsGrid::new(lattice, polygon)?;
     let f = HeightFunction::parse(&args.height)?;
-    // Check the formula at every vertex first, so that errors name a point.
-    for s in grid.real_slots() {
-        let p = lattice.point(grid.lattice_point(s));
-        f.eval(p.x, p.y)?;
-    }
-    let height = |p: Point2<f64>| f.eval(p.x, p.y).expect("checked at every vertex");
-    let ups = match args.kind {
-        Kind::Parametric => UpsSurface::Parametric(Ups::hermite(grid, |p| {
-            let d = height(p);
-            Hermite {
-                value: Vector3::new(p.x, p.y, d.v),
-                dx: Vector3::new(1.0, 0.0, d.dx),
-                dy: Vector3::new(0.0, 1.0, d.dy),
-            }
-        })),
-        Kind::Functional => UpsSurface::Functional(Ups::hermite(grid, |p| {
-            let d = height(p);
-            Hermite {
-                value: d.v,
-                dx: d.dx,
-                dy: d.dy,
-            }
-        })),
+    let kind = match args.kind {
+        Kind::Parametric => GraphKind::Parametric,
+        Kind::Functional => GraphKind::Functional,
     };
+    let ups = graph_surface_from_formula(grid, kind, &f)?;
     let g = ups.grid();
     let (vertices, triangles) = (g.vertex_count(), g.triangle_count());
     pssurf::io::save(&Surface::from(ups), &args.output)?;

@@ -2,6 +2,7 @@
 //! the fixed PS-triangles, subdivision, display by subdivision, the lifting wavelet transform,
 //! thresholding and noise.
 
+pub mod create;
 pub mod display;
 pub mod grid;
 pub mod lattice;
@@ -10,6 +11,7 @@ pub mod subdivision;
 pub mod threshold;
 pub mod wavelet;
 
+pub use create::{GraphKind, graph_surface, graph_surface_from_formula};
 pub use grid::UpsGrid;
 pub use lattice::{Lattice, LatticePoint, LatticePolygon};
 pub use spline::{Ups, fixed_ps_triangle};

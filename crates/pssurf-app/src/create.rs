@@ -1,0 +1,243 @@
+//! The "New surface" dialog: a UPS patch on a standard 3–6-sided lattice polygon interpolating
+//! a height formula (like `pssurf new ups`), or a graph quadric z = a x² + b xy + c y²
+//! (reproduced exactly by PS-splines).
+
+use nalgebra::Point2;
+use pssurf::expr::HeightFunction;
+use pssurf::surface::Surface;
+use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface_from_formula};
+
+use crate::app::{App, Selection};
+use crate::scene::SceneObject;
+
+/// What the dialog makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// z = the formula.
+    Formula,
+    /// z = a x² + b xy + c y².
+    Quadric,
+}
+
+/// The dialog's state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NewSurface {
+    /// Whether the window is open.
+    pub open: bool,
+    /// Formula or quadric.
+    pub shape: Shape,
+    /// Sides of the standard polygon (3–6).
+    pub sides: usize,
+    /// Triangles along a side.
+    pub size: i64,
+    /// The polygon's side length (the lattice base is side / size).
+    pub side_length: f64,
+    /// The height formula.
+    pub formula: String,
+    /// The quadric's a, b, c.
+    pub quadric: [f64; 3],
+    /// Functional, parametric or NURPS.
+    pub kind: GraphKind,
+    /// The last problem, shown in the dialog.
+    pub error: Option<String>,
+}
+
+impl Default for NewSurface {
+    fn default() -> Self {
+        NewSurface {
+            open: false,
+            shape: Shape::Formula,
+            sides: 6,
+            size: 4,
+            side_length: 1.0,
+            formula: "0.3*sin(3*x)*cos(2*y)".into(),
+            quadric: [0.5, 0.0, 0.5],
+            kind: GraphKind::Parametric,
+            error: None,
+        }
+    }
+}
+
+impl NewSurface {
+    /// The formula of the surface to make.
+    pub fn height(&self) -> String {
+        match self.shape {
+            Shape::Formula => self.formula.clone(),
+            Shape::Quadric => {
+                let [a, b, c] = self.quadric;
+                format!("({a})*x^2 + ({b})*x*y + ({c})*y^2")
+            }
+        }
+    }
+
+    /// A name for the new object.
+    pub fn name(&self) -> String {
+        let polygon = ["triangle", "rhombus", "pentagon", "hexagon"][self.sides.clamp(3, 6) - 3];
+        match self.shape {
+            Shape::Formula => format!("UPS {polygon}"),
+            Shape::Quadric => {
+                let [a, _, c] = self.quadric;
+                let kind = if a * c > 0.0 {
+                    "elliptic paraboloid"
+                } else if a * c < 0.0 {
+                    "hyperbolic paraboloid"
+                } else {
+                    "parabolic cylinder"
+                };
+                format!("{kind} ({polygon})")
+            }
+        }
+    }
+
+    /// Builds the surface: the standard polygon centred at the origin.
+    pub fn build(&self) -> Result<Surface, String> {
+        if !(3..=6).contains(&self.sides) {
+            return Err("the polygon must have 3 to 6 sides".into());
+        }
+        if !(1..=200).contains(&self.size) {
+            return Err("give 1 to 200 triangles per side".into());
+        }
+        if !(self.side_length.is_finite() && self.side_length > 0.0) {
+            return Err("the side length must be positive".into());
+        }
+        let polygon = LatticePolygon::standard(self.sides, self.size).map_err(|e| e.to_string())?;
+        let base = self.side_length / self.size as f64;
+        let at = |origin| Lattice { base, origin };
+        let grid =
+            UpsGrid::new(at(Point2::origin()), polygon.clone()).map_err(|e| e.to_string())?;
+        // Centre the polygon's bounding box at the origin.
+        let (lo, hi) = grid_bounds(&grid);
+        let grid = UpsGrid::new(at(Point2::from(-(lo.coords + hi.coords) / 2.0)), polygon)
+            .map_err(|e| e.to_string())?;
+        let f = HeightFunction::parse(&self.height()).map_err(|e| e.to_string())?;
+        let ups = graph_surface_from_formula(grid, self.kind, &f).map_err(|e| e.to_string())?;
+        Ok(Surface::from(ups))
+    }
+}
+
+/// The bounding box of a grid's vertices.
+fn grid_bounds(grid: &UpsGrid) -> (Point2<f64>, Point2<f64>) {
+    let lattice = grid.lattice();
+    grid.real_slots().iter().fold(
+        (
+            Point2::new(f64::INFINITY, f64::INFINITY),
+            Point2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        ),
+        |(lo, hi), &s| {
+            let p = lattice.point(grid.lattice_point(s));
+            (lo.inf(&p), hi.sup(&p))
+        },
+    )
+}
+
+/// Adds the dialog's surface to the scene as one undoable edit and selects it.
+pub fn create(app: &mut App) {
+    let d = &mut app.new_surface;
+    let surface = match d.build() {
+        Ok(s) => s,
+        Err(e) => {
+            d.error = Some(e);
+            return;
+        }
+    };
+    d.error = None;
+    d.open = false;
+    let object = SceneObject::new(d.name(), surface);
+    let name = object.name.clone();
+    let added = app.doc.edit("new surface", |scene| {
+        scene.objects.push(object);
+        Ok::<(), String>(())
+    });
+    if added.is_ok() {
+        app.selection = Selection {
+            object: Some(app.doc.scene.objects.len() - 1),
+            vertex: None,
+        };
+        app.vertex_edit = None;
+        app.frame_pending = true;
+        app.status = format!("created {name}");
+    }
+}
+
+/// Draws the dialog when open.
+pub fn window(app: &mut App, ctx: &egui::Context) {
+    if !app.new_surface.open {
+        return;
+    }
+    let mut open = true;
+    let mut go = false;
+    egui::Window::new("New surface")
+        .open(&mut open)
+        .resizable(false)
+        .show(ctx, |ui| {
+            let d = &mut app.new_surface;
+            ui.horizontal(|ui| {
+                ui.radio_value(&mut d.shape, Shape::Formula, "height formula");
+                ui.radio_value(&mut d.shape, Shape::Quadric, "quadric");
+            });
+            egui::Grid::new("new surface")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("polygon");
+                    egui::ComboBox::from_label("sides")
+                        .selected_text(format!("{} sides", d.sides))
+                        .show_ui(ui, |ui| {
+                            for n in 3..=6 {
+                                ui.selectable_value(&mut d.sides, n, format!("{n} sides"));
+                            }
+                        });
+                    ui.end_row();
+                    let l = ui.label("triangles per side");
+                    ui.add(egui::DragValue::new(&mut d.size).range(1..=200))
+                        .labelled_by(l.id);
+                    ui.end_row();
+                    let l = ui.label("side length");
+                    ui.add(
+                        egui::DragValue::new(&mut d.side_length)
+                            .speed(0.01)
+                            .range(1e-6..=1e6),
+                    )
+                    .labelled_by(l.id);
+                    ui.end_row();
+                    match d.shape {
+                        Shape::Formula => {
+                            let l = ui.label("z =");
+                            ui.text_edit_singleline(&mut d.formula)
+                                .labelled_by(l.id)
+                                .on_hover_text(
+                                    "x, y, numbers, + - * / ^, sin cos tan exp ln sqrt abs, PI, E",
+                                );
+                            ui.end_row();
+                        }
+                        Shape::Quadric => {
+                            for (k, name) in ["a (x²)", "b (xy)", "c (y²)"].iter().enumerate() {
+                                let l = ui.label(*name);
+                                ui.add(egui::DragValue::new(&mut d.quadric[k]).speed(0.01))
+                                    .labelled_by(l.id);
+                                ui.end_row();
+                            }
+                        }
+                    }
+                    ui.label("kind");
+                    ui.horizontal(|ui| {
+                        ui.radio_value(&mut d.kind, GraphKind::Parametric, "parametric");
+                        ui.radio_value(&mut d.kind, GraphKind::Functional, "functional");
+                        ui.radio_value(&mut d.kind, GraphKind::Rational, "NURPS");
+                    });
+                    ui.end_row();
+                });
+            if d.shape == Shape::Quadric {
+                ui.weak(format!("z = {}", d.height()));
+            }
+            if let Some(e) = &d.error {
+                ui.colored_label(egui::Color32::from_rgb(190, 30, 30), e);
+            }
+            go = ui.button("Create").clicked();
+        });
+    if go {
+        create(app);
+    }
+    if !open {
+        app.new_surface.open = false;
+    }
+}
