@@ -17,7 +17,7 @@ use crate::edit::{self, VertexControl};
 use crate::gpu::{FrameGeometry, LineSet};
 use crate::panels::{Panel, PanelContext, default_panels};
 use crate::probe::{Probe, ProbeSettings, probe_at, probe_lines};
-use crate::scene::Scene;
+use crate::scene::{Material, Scene};
 
 /// What is selected.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -116,6 +116,8 @@ pub struct App {
     pub display: DisplaySettings,
     /// The 3D camera.
     pub camera: OrbitCamera,
+    /// The light of the shaded view.
+    pub light: display::Light,
     /// The status bar's message.
     pub status: String,
     /// An error shown in a window until dismissed.
@@ -164,6 +166,7 @@ impl App {
             selection,
             display: DisplaySettings::default(),
             camera: OrbitCamera::default(),
+            light: Default::default(),
             status: String::new(),
             error: None,
             panels: default_panels(),
@@ -344,7 +347,19 @@ impl App {
             .unwrap_or(1.0)
             .max(1e-12);
         {
-            let mut meshes: Vec<&mut ObjectMesh> = self.cache.meshes.values_mut().collect();
+            let materials: HashMap<u64, Material> = self
+                .doc
+                .scene
+                .objects
+                .iter()
+                .map(|o| (o.revision, o.material))
+                .collect();
+            let mut meshes: Vec<(&mut ObjectMesh, Material)> = self
+                .cache
+                .meshes
+                .iter_mut()
+                .map(|(r, m)| (m, materials.get(r).copied().unwrap_or_default()))
+                .collect();
             self.cache.scale = display::colorize(&mut meshes, &self.display, diameter);
         }
         let mut g = FrameGeometry {

@@ -10,7 +10,7 @@ use pssurf::surface::PatchwiseSurface;
 use pssurf_viz::colormap::{ColorMap, ColorScale};
 use pssurf_viz::plot::{Overlays, Polyline, Range, control_overlay, range_scale, triangle_overlay};
 
-use crate::scene::SceneObject;
+use crate::scene::{Material, SceneObject};
 
 /// What colours the surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -53,6 +53,46 @@ impl Default for DisplaySettings {
             overlays: Overlays::default(),
             zebra_width_deg: 6.0,
         }
+    }
+}
+
+/// The directional light of the shaded view.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    /// Fixed to the camera (from above left of the eye) instead of to the scene.
+    pub headlight: bool,
+    /// For a scene light: the azimuth in the xy-plane, degrees from +x.
+    pub azimuth_deg: f32,
+    /// For a scene light: the elevation above the xy-plane, degrees.
+    pub elevation_deg: f32,
+}
+
+impl Default for Light {
+    fn default() -> Self {
+        Light {
+            headlight: true,
+            azimuth_deg: 45.0,
+            elevation_deg: 50.0,
+        }
+    }
+}
+
+impl Light {
+    /// The unit direction towards the light, given the camera's right, up and to-eye axes.
+    pub fn direction(
+        &self,
+        right: nalgebra::Vector3<f32>,
+        up: nalgebra::Vector3<f32>,
+        to_eye: nalgebra::Vector3<f32>,
+    ) -> nalgebra::Vector3<f32> {
+        if self.headlight {
+            return (0.35 * right + 0.55 * up + 0.75 * to_eye).normalize();
+        }
+        let (a, e) = (
+            self.azimuth_deg.to_radians(),
+            self.elevation_deg.to_radians(),
+        );
+        nalgebra::Vector3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
     }
 }
 
@@ -131,9 +171,6 @@ pub fn scale_for(
     range_scale(settings.range, &color_map(settings), q, values, diameter)
 }
 
-/// The neutral surface colour.
-pub const NEUTRAL: [u8; 4] = [200, 200, 205, 255];
-
 /// The sampling level used for an object (the setting, capped by [`max_level`]).
 pub fn display_level(o: &SceneObject, settings: &DisplaySettings) -> u32 {
     settings
@@ -141,7 +178,7 @@ pub fn display_level(o: &SceneObject, settings: &DisplaySettings) -> u32 {
         .min(max_level(o.surface.general().patch_count()))
 }
 
-/// Samples an object for display, in a neutral colour (see [`colorize`]).
+/// Samples an object for display, in its material's colour (see [`colorize`]).
 pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
     let surface = o.surface.general();
     let level = display_level(o, settings);
@@ -157,7 +194,7 @@ pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
         .positions
         .iter()
         .zip(&sampled.mesh.normals)
-        .map(|(p, n)| placement.vertex(p, n, NEUTRAL))
+        .map(|(p, n)| placement.vertex(p, n, o.material.color()))
         .collect();
     let (lines, layout) = object_lines(o, settings, level);
     ObjectMesh {
@@ -343,25 +380,26 @@ impl Placement {
 }
 
 /// Colours the meshes of a curvature plot with one scale fitted to all their values
-/// (returned for the legend); other modes get the neutral colour.
+/// (returned for the legend); in other modes each mesh gets its material's colour.
 pub fn colorize(
-    meshes: &mut [&mut ObjectMesh],
+    meshes: &mut [(&mut ObjectMesh, Material)],
     settings: &DisplaySettings,
     diameter: f64,
 ) -> Option<ColorScale> {
     let ViewMode::Curvature(q) = settings.mode else {
-        for m in meshes.iter_mut() {
-            m.vertices.iter_mut().for_each(|v| v.color = NEUTRAL);
+        for (m, material) in meshes.iter_mut() {
+            let c = material.color();
+            m.vertices.iter_mut().for_each(|v| v.color = c);
         }
         return None;
     };
     let all: Vec<f64> = meshes
         .iter()
-        .flat_map(|m| m.values.iter().copied())
+        .flat_map(|(m, _)| m.values.iter().copied())
         .collect();
     let scale = scale_for(settings, q, &all, diameter);
     let map = color_map(settings);
-    for m in meshes.iter_mut() {
+    for (m, _) in meshes.iter_mut() {
         for (v, x) in m.vertices.iter_mut().zip(&m.values) {
             let [r, g, b] = map.at(scale.position(*x));
             v.color = [r, g, b, 255];

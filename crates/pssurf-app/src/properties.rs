@@ -9,6 +9,7 @@ use crate::app::App;
 use crate::display::ViewMode;
 use crate::edit;
 use crate::probe::Alignment;
+use crate::scene::Material;
 
 /// Draws the properties of the selection.
 pub fn ui(app: &mut App, ui: &mut egui::Ui) {
@@ -23,12 +24,26 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     ui.heading("Object");
     let o = &app.doc.scene.objects[i];
     let (old_name, old_t) = (o.name.clone(), o.transform);
-    let mut name = o.name.clone();
+    let (old_group, old_material) = (o.group.clone(), o.material);
+    let (mut name, mut group, mut material) = (o.name.clone(), o.group.clone(), o.material);
     let mut t = o.transform;
     ui.horizontal(|ui| {
         let label = ui.label("name");
         ui.text_edit_singleline(&mut name).labelled_by(label.id);
     });
+    ui.horizontal(|ui| {
+        let label = ui.label("group");
+        ui.text_edit_singleline(&mut group)
+            .labelled_by(label.id)
+            .on_hover_text("Objects with the same group name are listed together");
+    });
+    egui::ComboBox::from_label("material")
+        .selected_text(material.name())
+        .show_ui(ui, |ui| {
+            for m in Material::ALL {
+                ui.selectable_value(&mut material, m, m.name());
+            }
+        });
     let n = edit::vertex_count(&o.surface);
     ui.label(format!(
         "{} surface, {n} vertices, {} triangles",
@@ -61,6 +76,19 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     if name != old_name {
         let _ = app.doc.edit::<()>("rename", |s| {
             s.objects[i].name = name;
+            Ok(())
+        });
+    }
+    if group != old_group {
+        let _ = app.doc.edit::<()>("group", |s| {
+            s.objects[i].group = group.trim().to_string();
+            Ok(())
+        });
+    }
+    if material != old_material {
+        let _ = app.doc.edit::<()>("material", |s| {
+            s.objects[i].material = material;
+            s.objects[i].touch();
             Ok(())
         });
     }
@@ -203,6 +231,16 @@ pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
     }
     ui.add(egui::Slider::new(&mut d.level, 0..=5).text("display level"))
         .on_hover_text("Each PS piece is drawn as 4^level triangles");
+    if d.mode == ViewMode::Shaded {
+        let l = &mut app.light;
+        ui.checkbox(&mut l.headlight, "headlight")
+            .on_hover_text("The light moves with the camera; off: fixed in the scene");
+        if !l.headlight {
+            ui.add(egui::Slider::new(&mut l.azimuth_deg, -180.0..=180.0).text("light azimuth °"));
+            ui.add(egui::Slider::new(&mut l.elevation_deg, -90.0..=90.0).text("light elevation °"));
+        }
+    }
+    let d = &mut app.display;
     ui.horizontal_wrapped(|ui| {
         ui.checkbox(&mut d.flat, "flat");
         ui.checkbox(&mut d.overlays.wire, "triangulation");

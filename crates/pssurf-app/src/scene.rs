@@ -53,11 +53,61 @@ impl Transform {
     }
 }
 
+/// A surface material for the shaded view: a base colour and how glossy it is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Material {
+    /// Matte light grey.
+    #[default]
+    Clay,
+    /// Glossy blue plastic.
+    Plastic,
+    /// Shiny gold.
+    Gold,
+    /// Semi-glossy green.
+    Jade,
+}
+
+impl Material {
+    /// Every material.
+    pub const ALL: [Material; 4] = [
+        Material::Clay,
+        Material::Plastic,
+        Material::Gold,
+        Material::Jade,
+    ];
+
+    /// The UI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Material::Clay => "clay",
+            Material::Plastic => "plastic",
+            Material::Gold => "gold",
+            Material::Jade => "jade",
+        }
+    }
+
+    /// The vertex colour: RGB, and the glossiness in alpha (the shader's specular strength
+    /// and exponent grow with it).
+    pub fn color(self) -> [u8; 4] {
+        match self {
+            Material::Clay => [200, 200, 205, 40],
+            Material::Plastic => [70, 120, 210, 150],
+            Material::Gold => [212, 170, 60, 230],
+            Material::Jade => [90, 170, 120, 110],
+        }
+    }
+}
+
 /// One object of the scene.
 #[derive(Clone, Debug)]
 pub struct SceneObject {
     /// The name shown in the scene tree.
     pub name: String,
+    /// The group it belongs to in the scene tree ("" for none).
+    pub group: String,
+    /// How it is shaded.
+    pub material: Material,
     /// Whether it is drawn.
     pub visible: bool,
     /// Its placement.
@@ -80,6 +130,8 @@ impl SceneObject {
     pub fn new(name: impl Into<String>, surface: Surface) -> Self {
         SceneObject {
             name: name.into(),
+            group: String::new(),
+            material: Material::default(),
             visible: true,
             transform: Transform::default(),
             surface,
@@ -133,6 +185,10 @@ struct SceneFile {
 #[serde(deny_unknown_fields)]
 struct ObjectFile {
     name: String,
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    group: String,
+    #[serde(default)]
+    material: Material,
     #[serde(default = "yes")]
     visible: bool,
     #[serde(default)]
@@ -155,6 +211,8 @@ impl Scene {
                 .iter()
                 .map(|o| ObjectFile {
                     name: o.name.clone(),
+                    group: o.group.clone(),
+                    material: o.material,
                     visible: o.visible,
                     transform: o.transform,
                     surface: serde_json::from_str(&pssurf::io::to_json_string(&o.surface))
@@ -201,6 +259,8 @@ impl Scene {
                 .map_err(|e| format!("object {k} ({}): {e}", o.name))?;
             objects.push(SceneObject {
                 name: o.name,
+                group: o.group,
+                material: o.material,
                 visible: o.visible,
                 transform: o.transform,
                 surface,

@@ -1,60 +1,122 @@
-//! The scene tree: objects with visibility, selection, rename and delete.
+//! The scene tree: objects, grouped by their group name, with visibility (per object and per
+//! group), selection, rename (in the properties) and delete.
 
 use crate::app::{App, Selection};
+
+/// What the user asked for in the tree this frame.
+#[derive(Default)]
+struct Actions {
+    delete: Option<usize>,
+    toggle: Vec<usize>,
+    select: Option<usize>,
+}
 
 /// Draws the scene tree.
 pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     ui.heading("Scene");
-    let mut delete = None;
-    let mut toggle = None;
-    for (i, o) in app.doc.scene.objects.iter().enumerate() {
+    let mut actions = Actions::default();
+    let objects = &app.doc.scene.objects;
+    let mut groups: Vec<&str> = Vec::new();
+    for o in objects {
+        if !o.group.is_empty() && !groups.contains(&o.group.as_str()) {
+            groups.push(&o.group);
+        }
+    }
+    for i in (0..objects.len()).filter(|&i| objects[i].group.is_empty()) {
+        object_row(app, ui, i, &mut actions);
+    }
+    for g in groups {
+        let members: Vec<usize> = (0..objects.len())
+            .filter(|&i| objects[i].group == g)
+            .collect();
         ui.horizontal(|ui| {
-            let mut visible = o.visible;
-            let r = ui.checkbox(&mut visible, "").on_hover_text("Show or hide");
+            let mut visible = members.iter().any(|&i| objects[i].visible);
+            let r = ui
+                .checkbox(&mut visible, "")
+                .on_hover_text("Show or hide the group");
             r.widget_info(|| {
                 egui::WidgetInfo::selected(
                     egui::accesskit::Role::CheckBox,
                     true,
                     visible,
-                    format!("visible {}", o.name),
+                    format!("visible group {g}"),
                 )
             });
             if r.changed() {
-                toggle = Some(i);
+                actions.toggle = members
+                    .iter()
+                    .copied()
+                    .filter(|&i| objects[i].visible != visible)
+                    .collect();
             }
-            let selected = app.selection.object == Some(i);
-            let label = format!("{} ({})", o.name, o.surface.kind_name());
-            if ui
-                .selectable_label(selected, label)
-                .on_hover_text("Select")
-                .clicked()
-                && !selected
-            {
-                app.selection = Selection {
-                    object: Some(i),
-                    vertex: None,
-                };
-                app.vertex_edit = None;
-            }
-            if ui
-                .small_button("delete")
-                .on_hover_text("Delete the object")
-                .clicked()
-            {
-                delete = Some(i);
-            }
+            egui::CollapsingHeader::new(format!("group {g}"))
+                .default_open(true)
+                .show(ui, |ui| {
+                    for &i in &members {
+                        object_row(app, ui, i, &mut actions);
+                    }
+                });
         });
     }
-    if app.doc.scene.objects.is_empty() {
-        ui.weak("No objects: open a file from the File menu.");
+    if objects.is_empty() {
+        ui.weak("No objects: open a file from the File menu, or make one in the New menu.");
     }
-    if let Some(i) = toggle {
+    apply(app, actions);
+}
+
+fn object_row(app: &App, ui: &mut egui::Ui, i: usize, actions: &mut Actions) {
+    let o = &app.doc.scene.objects[i];
+    ui.horizontal(|ui| {
+        let mut visible = o.visible;
+        let r = ui.checkbox(&mut visible, "").on_hover_text("Show or hide");
+        r.widget_info(|| {
+            egui::WidgetInfo::selected(
+                egui::accesskit::Role::CheckBox,
+                true,
+                visible,
+                format!("visible {}", o.name),
+            )
+        });
+        if r.changed() {
+            actions.toggle = vec![i];
+        }
+        let selected = app.selection.object == Some(i);
+        let label = format!("{} ({})", o.name, o.surface.kind_name());
+        if ui
+            .selectable_label(selected, label)
+            .on_hover_text("Select")
+            .clicked()
+            && !selected
+        {
+            actions.select = Some(i);
+        }
+        if ui
+            .small_button("delete")
+            .on_hover_text("Delete the object")
+            .clicked()
+        {
+            actions.delete = Some(i);
+        }
+    });
+}
+
+fn apply(app: &mut App, actions: Actions) {
+    if let Some(i) = actions.select {
+        app.selection = Selection {
+            object: Some(i),
+            vertex: None,
+        };
+        app.vertex_edit = None;
+    }
+    if !actions.toggle.is_empty() {
         let _ = app.doc.edit::<()>("show/hide", |s| {
-            s.objects[i].visible = !s.objects[i].visible;
+            for &i in &actions.toggle {
+                s.objects[i].visible = !s.objects[i].visible;
+            }
             Ok(())
         });
     }
-    if let Some(i) = delete {
+    if let Some(i) = actions.delete {
         let name = app.doc.scene.objects[i].name.clone();
         let _ = app.doc.edit::<()>("delete", |s| {
             s.objects.remove(i);

@@ -61,15 +61,20 @@ fn fs_surface(in: SurfaceOut) -> @location(0) vec4<f32> {
         return vec4<f32>(c, c, c, 1.0);
     }
     var base = in.color.rgb;
+    // Shaded: the material's colour, its glossiness in alpha; back faces warm.
+    var gloss = in.color.a;
     if (mode < 0.5) {
-        base = select(vec3<f32>(0.78, 0.79, 0.82), vec3<f32>(0.86, 0.62, 0.45), back);
+        if (back) {
+            base = vec3<f32>(0.86, 0.62, 0.45);
+            gloss = 0.15;
+        }
     } else if (u.params.w < 0.5) {
         return vec4<f32>(base, 1.0);
     }
     let l = u.light.xyz;
     let diffuse = max(dot(n, l), 0.0);
     let h = normalize(l + v);
-    let specular = 0.25 * pow(max(dot(n, h), 0.0), 48.0);
+    let specular = (0.05 + 0.55 * gloss) * pow(max(dot(n, h), 0.0), 8.0 + 120.0 * gloss);
     return vec4<f32>(base * (0.28 + 0.72 * diffuse) + vec3<f32>(specular), 1.0);
 }
 

@@ -17,7 +17,7 @@ pub fn uniforms(app: &App, size: [u32; 2]) -> Uniforms {
     let aspect = size[0].max(1) as f32 / size[1].max(1) as f32;
     let (right, up) = c.right_up();
     let to_eye = c.to_eye();
-    let light = (0.35 * right + 0.55 * up + 0.75 * to_eye).normalize();
+    let light = app.light.direction(right, up, to_eye);
     let eye = c.eye();
     let mode = match app.display.mode {
         ViewMode::Shaded => 0.0,

@@ -253,6 +253,8 @@ fn saving_and_reopening_a_scene_gives_the_same_scene() {
     let path = dir.path().join("scene.json");
     let mut app = App::demo();
     app.doc.scene.objects[1].name = "bowl".into();
+    app.doc.scene.objects[1].group = "quadrics".into();
+    app.doc.scene.objects[1].material = pssurf_app::scene::Material::Gold;
     app.save(path.clone());
     assert!(app.error.is_none(), "{:?}", app.error);
     let mut other = App::new(Default::default(), None);
@@ -260,6 +262,11 @@ fn saving_and_reopening_a_scene_gives_the_same_scene() {
     assert!(other.error.is_none(), "{:?}", other.error);
     assert_eq!(other.doc.scene.to_json(), app.doc.scene.to_json());
     assert_eq!(other.doc.scene.objects[1].name, "bowl");
+    assert_eq!(other.doc.scene.objects[1].group, "quadrics");
+    assert_eq!(
+        other.doc.scene.objects[1].material,
+        pssurf_app::scene::Material::Gold
+    );
     assert_eq!(
         other.doc.scene.objects[1].transform,
         app.doc.scene.objects[1].transform
@@ -444,4 +451,53 @@ fn the_new_ups_dialog_reports_a_bad_formula_and_adds_nothing() {
     let e = app.new_surface.error.clone().expect("an error");
     assert!(e.contains("`t`"), "{e}");
     assert!(app.new_surface.open);
+}
+
+#[test]
+fn materials_colour_the_shaded_mesh_and_groups_hide_together() {
+    use pssurf_app::scene::Material;
+    let mut app = App::demo();
+    app.display.mode = ViewMode::Shaded;
+    app.selection.object = Some(1);
+    let mut h = harness(app);
+    h.get_by_label("material").click();
+    h.run_steps(2);
+    h.get_by_label("gold").click();
+    h.run_steps(2);
+    let app = h.state();
+    assert_eq!(app.doc.scene.objects[1].material, Material::Gold);
+    let gold = Material::Gold.color();
+    let mesh = app.object_mesh(1).unwrap();
+    assert!(mesh.vertices.iter().all(|v| v.color == gold));
+    let clay = Material::Clay.color();
+    assert!(
+        app.object_mesh(0)
+            .unwrap()
+            .vertices
+            .iter()
+            .all(|v| v.color == clay)
+    );
+    // Put both objects in one group; its checkbox hides both, undo shows them again.
+    for object in [1, 0] {
+        h.state_mut().selection.object = Some(object);
+        h.run_steps(2);
+        h.get_by_label("group").click();
+        h.run_steps(1);
+        h.get_by_label("group").type_text("demo");
+        h.run_steps(2);
+    }
+    assert!(
+        h.state()
+            .doc
+            .scene
+            .objects
+            .iter()
+            .all(|o| o.group == "demo")
+    );
+    h.get_by_label("visible group demo").click();
+    h.run_steps(2);
+    assert!(h.state().doc.scene.objects.iter().all(|o| !o.visible));
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.run_steps(2);
+    assert!(h.state().doc.scene.objects.iter().all(|o| o.visible));
 }
