@@ -143,6 +143,10 @@ pub struct App {
     pub drag: Option<(usize, usize, usize)>,
     /// Frame the scene at the next draw.
     pub frame_pending: bool,
+    /// The Export dialog.
+    pub export: crate::export::ExportDialog,
+    /// The wgpu device and queue (for offscreen pictures), when running on wgpu.
+    pub render_state: Option<eframe::egui_wgpu::RenderState>,
     /// The "New surface" dialog.
     pub new_surface: crate::create::NewSurface,
     /// Where autosaves go (None: no autosave).
@@ -180,6 +184,8 @@ impl App {
             drag: None,
             frame_pending: true,
             new_surface: Default::default(),
+            export: Default::default(),
+            render_state: None,
             autosave: None,
             last_autosave: 0.0,
         }
@@ -519,6 +525,7 @@ impl App {
             });
         egui::CentralPanel::no_frame().show(ui, |ui| crate::view3d::ui(self, ui));
         crate::create::window(self, ui.ctx());
+        crate::export::window(self, ui.ctx());
         self.error_window(ui.ctx());
     }
 
@@ -548,10 +555,21 @@ impl App {
                 }
                 ui.separator();
                 if ui
-                    .button("Export mesh (PLY) of the selected object")
+                    .button("Export mesh…")
+                    .on_hover_text("PLY, OBJ, STL, glTF or VTK, with curvature fields")
                     .clicked()
                 {
-                    self.export_selected();
+                    crate::export::open(self, crate::export::What::Mesh);
+                }
+                if ui
+                    .add_enabled(
+                        self.render_state.is_some(),
+                        egui::Button::new("Export picture…"),
+                    )
+                    .on_hover_text("The 3D view as a PNG picture of any size")
+                    .clicked()
+                {
+                    crate::export::open(self, crate::export::What::Picture);
                 }
             });
             ui.menu_button("New", |ui| {
@@ -602,44 +620,6 @@ impl App {
                 ui.checkbox(&mut self.display.flat, "Flat shading");
             });
         });
-    }
-
-    fn export_selected(&mut self) {
-        let Some(i) = self.selection.object else {
-            self.status = "select an object to export".into();
-            return;
-        };
-        let o = &self.doc.scene.objects[i];
-        let stem = self
-            .doc
-            .path
-            .as_ref()
-            .and_then(|p| p.parent())
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from("."));
-        let path = stem.join(format!(
-            "{}.ply",
-            o.name.replace(|c: char| !c.is_alphanumeric(), "_")
-        ));
-        let sampled =
-            pssurf::interrogate::sample_patches(o.surface.general(), self.display.level, true);
-        let fields: Vec<(String, Vec<f64>)> = CurvatureQuantity::ALL
-            .iter()
-            .map(|q| (q.short_name().to_string(), sampled.quantity(*q)))
-            .collect();
-        let mesh = pssurf_viz::FieldMesh {
-            mesh: &sampled.mesh,
-            fields: &fields,
-            colors: None,
-        };
-        let r = pssurf::io::atomic_write(&path, pssurf::io::Durability::Atomic, |w| {
-            pssurf_viz::write_mesh(w, pssurf_viz::MeshFormat::Ply, &mesh)
-                .map_err(std::io::Error::other)
-        });
-        match r {
-            Ok(()) => self.status = format!("wrote {}", path.display()),
-            Err(e) => self.error = Some(format!("Could not export.\n\n{e}")),
-        }
     }
 
     fn shortcuts(&mut self, ctx: &egui::Context) {

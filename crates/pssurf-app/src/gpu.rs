@@ -641,6 +641,25 @@ impl egui_wgpu::CallbackTrait for ViewCallback {
     }
 }
 
+/// Draws a picture of `size` pixels offscreen with a renderer of its own (so the view on
+/// screen is not disturbed) and reads it back.
+pub fn render_picture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    geometry: &FrameGeometry,
+    extra: &LineSet,
+    uniforms: &Uniforms,
+    size: [u32; 2],
+) -> Result<image::RgbaImage, String> {
+    let mut r = ViewRenderer::new(device);
+    r.upload(device, queue, geometry);
+    r.upload_lines(device, extra);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    r.render(device, queue, &mut encoder, size, uniforms);
+    queue.submit([encoder.finish()]);
+    read_texture(device, queue, r.color_texture().expect("just rendered"))
+}
+
 /// Reads a texture (RGBA8) back into an image.
 pub fn read_texture(
     device: &wgpu::Device,

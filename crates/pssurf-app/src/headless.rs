@@ -16,6 +16,7 @@ pub fn harness(mut app: App, width: f32, height: f32) -> Harness<'static, App> {
     );
     ViewResources::install(&state);
     app.gpu = true;
+    app.render_state = Some(state.clone());
     Harness::builder()
         .with_size(egui::vec2(width, height))
         .renderer(WgpuTestRenderer::from_render_state(state))

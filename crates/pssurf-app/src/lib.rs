@@ -14,6 +14,7 @@ pub mod display;
 pub mod document;
 pub mod domain_view;
 pub mod edit;
+pub mod export;
 pub mod gpu;
 pub mod headless;
 pub mod panels;

@@ -101,6 +101,7 @@ fn main() -> Result<()> {
             if let Some(state) = &cc.wgpu_render_state {
                 pssurf_app::gpu::ViewResources::install(state);
                 app.gpu = true;
+                app.render_state = Some(state.clone());
             }
             Ok(Box::new(app))
         }),

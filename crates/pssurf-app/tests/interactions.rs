@@ -501,3 +501,50 @@ fn materials_colour_the_shaded_mesh_and_groups_hide_together() {
     h.run_steps(2);
     assert!(h.state().doc.scene.objects.iter().all(|o| o.visible));
 }
+
+#[test]
+fn the_export_dialog_writes_the_selected_mesh_in_scene_placement() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut app = App::demo();
+    app.selection.object = Some(1);
+    let mut h = harness(app);
+    h.get_by_label("File").click();
+    h.run_steps(2);
+    h.get_by_label("Export mesh…").click();
+    h.run_steps(2);
+    assert!(h.state().export.path.ends_with("NURPS_paraboloid.ply"));
+    h.get_by_label("format").click();
+    h.run_steps(2);
+    h.get_by_label("obj").click();
+    h.run_steps(2);
+    let path = dir.path().join("bowl.obj");
+    h.state_mut().export.path = path.display().to_string();
+    h.run_steps(1);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Export")
+        .click();
+    h.run_steps(2);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let xs: Vec<f64> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| l.split_whitespace().next().unwrap().parse().unwrap())
+        .collect();
+    let app = h.state();
+    assert_eq!(xs.len(), app.object_mesh(1).unwrap().vertices.len());
+    // The paraboloid (x, y, z(x, y)) is moved by 2.6 along x.
+    let (lo, hi) = xs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
+    let (dlo, dhi) = app.doc.scene.objects[1]
+        .surface
+        .general()
+        .basis()
+        .triangulation()
+        .bounds();
+    assert!(
+        (lo - dlo.x - 2.6).abs() < 1e-9 && (hi - dhi.x - 2.6).abs() < 1e-9,
+        "{lo} {hi}"
+    );
+    assert!(!app.export.open);
+}

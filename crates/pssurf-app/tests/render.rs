@@ -72,3 +72,33 @@ fn the_shaded_view_matches_its_snapshot() {
 fn the_zebra_view_matches_its_snapshot() {
     snapshot("zebra", ViewMode::Zebra);
 }
+
+#[test]
+fn export_picture_renders_the_view_offscreen_at_the_requested_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("view.png");
+    let mut h = headless::harness(App::demo(), 900.0, 600.0);
+    h.run_steps(3);
+    {
+        let app = h.state_mut();
+        pssurf_app::export::open(app, pssurf_app::export::What::Picture);
+        app.export.size = [640, 360];
+        app.export.path = path.display().to_string();
+        pssurf_app::export::run(app);
+        assert!(app.error.is_none(), "{:?}", app.error);
+    }
+    let img = image::open(&path).unwrap().to_rgba8();
+    assert_eq!(img.dimensions(), (640, 360));
+    let surface = img.pixels().filter(|p| !is_background(p)).count();
+    // Framed for the picture (the bounding sphere fills its height): both objects, one in
+    // each half.
+    assert!(surface > 640 * 360 / 30, "only {surface} surface pixels");
+    let left = img
+        .enumerate_pixels()
+        .filter(|(x, _, p)| *x < 320 && !is_background(p))
+        .count();
+    assert!(
+        left > surface / 5 && left < surface * 4 / 5,
+        "{left} of {surface} on the left"
+    );
+}
