@@ -325,6 +325,7 @@ impl App {
         let sampling_changed = self.cache.key.as_ref().is_none_or(|(_, d)| {
             d.level != self.display.level
                 || d.overlays != self.display.overlays
+                || d.mesh_edges != self.display.mesh_edges
                 || d.mode != self.display.mode
         });
         if sampling_changed {

@@ -21,6 +21,9 @@ pub enum ViewMode {
     Curvature(CurvatureQuantity),
     /// Zebra stripes (reflection lines).
     Zebra,
+    /// Hidden-line wireframe: the tessellation's edges, the surface only hiding what lies
+    /// behind it.
+    Wireframe,
 }
 
 /// The view's display settings.
@@ -40,6 +43,15 @@ pub struct DisplaySettings {
     pub overlays: Overlays,
     /// Zebra band width in degrees.
     pub zebra_width_deg: f32,
+    /// Draw the tessellation's edges (always in wireframe mode).
+    pub mesh_edges: bool,
+}
+
+impl DisplaySettings {
+    /// Whether the tessellation's edges are drawn.
+    pub fn edges_shown(&self) -> bool {
+        self.mesh_edges || self.mode == ViewMode::Wireframe
+    }
 }
 
 impl Default for DisplaySettings {
@@ -52,6 +64,7 @@ impl Default for DisplaySettings {
             flat: false,
             overlays: Overlays::default(),
             zebra_width_deg: 6.0,
+            mesh_edges: false,
         }
     }
 }
@@ -189,17 +202,18 @@ pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
         ViewMode::Curvature(q) => sampled.quantity(q),
         _ => Vec::new(),
     };
-    let vertices = sampled
+    let vertices: Vec<GpuVertex> = sampled
         .mesh
         .positions
         .iter()
         .zip(&sampled.mesh.normals)
         .map(|(p, n)| placement.vertex(p, n, o.material.color()))
         .collect();
-    let (lines, layout) = object_lines(o, settings, level);
+    let indices: Vec<u32> = sampled.mesh.triangles.iter().flatten().copied().collect();
+    let (lines, layout) = object_lines(o, settings, level, &vertices, &indices);
     ObjectMesh {
         vertices,
-        indices: sampled.mesh.triangles.iter().flatten().copied().collect(),
+        indices,
         uvs: sampled.mesh.uvs.iter().map(|p| [p.x, p.y]).collect(),
         lines,
         values,
@@ -207,11 +221,14 @@ pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
     }
 }
 
-/// The overlay lines of an object, triangle by triangle, then the control triangles.
+/// The overlay lines of an object, triangle by triangle (with the tessellation's edges over
+/// it when shown), then the control triangles.
 fn object_lines(
     o: &SceneObject,
     settings: &DisplaySettings,
     level: u32,
+    vertices: &[GpuVertex],
+    indices: &[u32],
 ) -> (Vec<LineVertex>, MeshLayout) {
     let surface = o.surface.general();
     let placement = Placement::of(o);
@@ -222,6 +239,9 @@ fn object_lines(
     for t in 0..tri.triangle_count() {
         for pl in triangle_overlay(surface, overlays, level.min(3), t) {
             placement.segments(&pl, &mut lines);
+        }
+        if settings.edges_shown() {
+            mesh_edges(vertices, indices, level, t, &mut lines);
         }
         triangle_lines.push(lines.len());
     }
@@ -296,6 +316,9 @@ pub fn update_vertex(
         for pl in triangle_overlay(surface, overlays, level.min(3), t) {
             placement.segments(&pl, &mut lines);
         }
+        if settings.edges_shown() {
+            mesh_edges(&mesh.vertices, &mesh.indices, level, t, &mut lines);
+        }
         write_slot(&mut mesh.lines[slot.clone()], &lines);
         push_range(&mut changed.lines, slot);
     }
@@ -307,6 +330,57 @@ pub fn update_vertex(
         push_range(&mut changed.lines, slot);
     }
     changed
+}
+
+/// The colour of the tessellation's edges.
+pub const EDGE_COLOR: [u8; 4] = [55, 60, 75, 255];
+
+/// The level of the grid the edges show: each PS piece as at most 4 triangles, so that
+/// the wireframe stays readable whatever the display level (the edges follow the finely
+/// sampled surface).
+pub const EDGE_LEVEL: u32 = 1;
+
+/// Appends the sampled edges of the six pieces of triangle `t` that lie on the grid lines of
+/// level [`EDGE_LEVEL`] (every triangle's edges are visited; an edge inside a piece is drawn
+/// twice, which looks the same).
+fn mesh_edges(
+    vertices: &[GpuVertex],
+    indices: &[u32],
+    level: u32,
+    t: usize,
+    out: &mut Vec<LineVertex>,
+) {
+    let n = 1usize << level;
+    let stride = 1usize << level.saturating_sub(EDGE_LEVEL);
+    let per_vertex = vertices_per_piece(level);
+    let per_piece = 3 * n * n;
+    // (i, j) of each local vertex index, rows of constant j.
+    let ij: Vec<(usize, usize)> = (0..=n)
+        .flat_map(|j| (0..=n - j).map(move |i| (i, j)))
+        .collect();
+    for (k, piece) in indices[6 * t * per_piece..6 * (t + 1) * per_piece]
+        .chunks_exact(per_piece)
+        .enumerate()
+    {
+        let base = (6 * t + k) * per_vertex;
+        for tri in piece.chunks_exact(3) {
+            for e in 0..3 {
+                let (a, b) = (tri[e] as usize, tri[(e + 1) % 3] as usize);
+                let ((ia, ja), (ib, jb)) = (ij[a - base], ij[b - base]);
+                let on_line = (ja == jb && ja % stride == 0)
+                    || (ia == ib && ia % stride == 0)
+                    || (ia + ja == ib + jb && (ia + ja) % stride == 0);
+                if on_line {
+                    for v in [a, b] {
+                        out.push(LineVertex {
+                            position: vertices[v].position,
+                            color: EDGE_COLOR,
+                        });
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Appends a range, merging it with the last one when they touch.

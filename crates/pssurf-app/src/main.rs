@@ -5,7 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Parser;
+use pssurf::interrogate::CurvatureQuantity;
 use pssurf_app::App;
+use pssurf_app::display::ViewMode;
 use pssurf_app::scene::Scene;
 
 /// The pssurf modeller: open PS, UPS and NURPS surfaces (or scenes) and interrogate them.
@@ -18,6 +20,10 @@ struct Args {
     /// Mesa's software Vulkan).
     #[arg(long, value_name = "OUT.png")]
     screenshot: Option<PathBuf>,
+    /// Start in this view: shaded, zebra, wireframe, or a curvature quantity (K, H, k1, k2,
+    /// kabs).
+    #[arg(long, value_name = "MODE")]
+    mode: Option<String>,
     /// Start with the probe on object OBJECT (0 is the first) at parameters (U, V).
     #[arg(long, value_name = "OBJECT,U,V", allow_hyphen_values = true)]
     probe: Option<String>,
@@ -35,6 +41,17 @@ fn parse_size(s: &str) -> Result<(f32, f32)> {
         bail!("--size must be between 200x150 and 8192x8192");
     }
     Ok((w, h))
+}
+
+fn parse_mode(s: &str) -> Result<ViewMode> {
+    Ok(match s {
+        "shaded" => ViewMode::Shaded,
+        "zebra" => ViewMode::Zebra,
+        "wireframe" => ViewMode::Wireframe,
+        q => ViewMode::Curvature(CurvatureQuantity::parse(q).with_context(|| {
+            format!("--mode {q}: use shaded, zebra, wireframe, K, H, k1, k2 or kabs")
+        })?),
+    })
 }
 
 fn parse_probe(s: &str) -> Result<(usize, f64, f64)> {
@@ -66,6 +83,9 @@ fn main() -> Result<()> {
     let args = Args::parse();
     let (w, h) = parse_size(&args.size)?;
     let mut app = load(&args.files)?;
+    if let Some(m) = &args.mode {
+        app.display.mode = parse_mode(m)?;
+    }
     if let Some(text) = &args.probe {
         let (object, u, v) = parse_probe(text)?;
         if object >= app.doc.scene.objects.len() {

@@ -201,6 +201,7 @@ pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
                 );
             }
             ui.selectable_value(&mut d.mode, ViewMode::Zebra, "zebra stripes");
+            ui.selectable_value(&mut d.mode, ViewMode::Wireframe, "wireframe");
         });
     if matches!(d.mode, ViewMode::Curvature(_)) {
         egui::ComboBox::from_label("colour map")
@@ -243,6 +244,8 @@ pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
     let d = &mut app.display;
     ui.horizontal_wrapped(|ui| {
         ui.checkbox(&mut d.flat, "flat");
+        ui.checkbox(&mut d.mesh_edges, "mesh edges")
+            .on_hover_text("The edges of the drawn triangles (display level)");
         ui.checkbox(&mut d.overlays.wire, "triangulation");
         ui.checkbox(&mut d.overlays.refinement, "PS refinement");
         ui.checkbox(&mut d.overlays.control, "control triangles");
@@ -306,6 +309,7 @@ pub fn mode_name(m: ViewMode) -> &'static str {
     match m {
         ViewMode::Shaded => "shaded",
         ViewMode::Zebra => "zebra stripes",
+        ViewMode::Wireframe => "wireframe",
         ViewMode::Curvature(CurvatureQuantity::Gaussian) => "Gaussian curvature K",
         ViewMode::Curvature(CurvatureQuantity::Mean) => "mean curvature H",
         ViewMode::Curvature(CurvatureQuantity::K1) => "κ1",

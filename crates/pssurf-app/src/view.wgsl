@@ -11,11 +11,15 @@ struct Uniforms {
     light: vec4<f32>,
     // The zebra axis (in the screen plane).
     axis: vec4<f32>,
-    // x: mode (0 shaded, 1 colours, 2 zebra); y: band width (radians); z: flat; w: lit colours.
+    // x: mode (0 shaded, 1 colours, 2 zebra, 3 hidden-line wireframe); y: band width
+    // (radians); z: flat; w: lit colours.
     params: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> u: Uniforms;
+
+// The view's background (gpu.rs BACKGROUND).
+const BACKGROUND: vec3<f32> = vec3<f32>(0.965, 0.968, 0.975);
 
 struct SurfaceOut {
     @builtin(position) clip: vec4<f32>,
@@ -36,6 +40,10 @@ fn vs_surface(@location(0) pos: vec3<f32>, @location(1) normal: vec3<f32>, @loca
 
 @fragment
 fn fs_surface(in: SurfaceOut) -> @location(0) vec4<f32> {
+    if (u.params.x > 2.5) {
+        // Wireframe: the surface only hides the edges behind it.
+        return vec4<f32>(BACKGROUND, 1.0);
+    }
     let face = cross(dpdx(in.world), dpdy(in.world));
     var n = in.normal;
     if (u.params.z > 0.5 || dot(n, n) < 1e-12) {

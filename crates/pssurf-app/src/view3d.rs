@@ -23,6 +23,7 @@ pub fn uniforms(app: &App, size: [u32; 2]) -> Uniforms {
         ViewMode::Shaded => 0.0,
         ViewMode::Curvature(_) => 1.0,
         ViewMode::Zebra => 2.0,
+        ViewMode::Wireframe => 3.0,
     };
     Uniforms {
         view_proj: c.view_projection(aspect).into(),

@@ -22,6 +22,7 @@ fn app() -> App {
         control: true,
         boundary: true,
     };
+    app.display.mesh_edges = true;
     app.update_geometry();
     app
 }

@@ -102,3 +102,30 @@ fn export_picture_renders_the_view_offscreen_at_the_requested_size() {
         "{left} of {surface} on the left"
     );
 }
+
+#[test]
+fn the_wireframe_shows_dark_edges_on_the_background_and_nothing_else() {
+    let mut app = App::demo();
+    app.display.mode = ViewMode::Wireframe;
+    let mut h = headless::harness(app, 900.0, 600.0);
+    h.run_steps(4);
+    let view = {
+        use egui_kittest::kittest::Queryable;
+        h.get_by_label("3D view").rect()
+    };
+    let img = h.render().expect("render");
+    let (mut edges, mut other) = (0, 0);
+    for y in view.top() as u32 + 2..view.bottom() as u32 - 2 {
+        for x in view.left() as u32 + 2..view.right() as u32 - 2 {
+            let p = img.get_pixel(x, y);
+            if is_background(p) {
+                continue;
+            }
+            // Edge pixels are grey-blue blends of the edge colour and the background.
+            let grey = (p[0] as i32 - p[1] as i32).abs() < 24 && p[2] as i32 >= p[0] as i32 - 4;
+            if grey { edges += 1 } else { other += 1 }
+        }
+    }
+    assert!(edges > 5000, "{edges} edge pixels");
+    assert!(other < edges / 50, "{other} coloured pixels");
+}
