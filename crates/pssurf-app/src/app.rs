@@ -644,6 +644,28 @@ impl App {
         if frame {
             self.frame_pending = true;
         }
+        // The camera from the keyboard: arrows orbit (Shift+arrows pan), + and - zoom.
+        let keys = ctx.input_mut(|i| {
+            let mut take = |m, k| i.consume_key(m, k);
+            use egui::{Key, Modifiers as M};
+            [
+                take(M::NONE, Key::ArrowLeft),
+                take(M::NONE, Key::ArrowRight),
+                take(M::NONE, Key::ArrowUp),
+                take(M::NONE, Key::ArrowDown),
+                take(M::SHIFT, Key::ArrowLeft),
+                take(M::SHIFT, Key::ArrowRight),
+                take(M::SHIFT, Key::ArrowUp),
+                take(M::SHIFT, Key::ArrowDown),
+                take(M::NONE, Key::Plus) || take(M::NONE, Key::Equals),
+                take(M::NONE, Key::Minus),
+            ]
+        });
+        let step = 12.5; // 5° per press
+        let [l, r, u, d, pl, pr, pu, pd, zoom_in, zoom_out] = keys.map(f32::from);
+        self.camera.orbit(step * (l - r), step * (u - d));
+        self.camera.pan(40.0 * (pr - pl), 40.0 * (pd - pu), 600.0);
+        self.camera.zoom(1.25f32.powf(zoom_in - zoom_out));
     }
 
     fn autosave_tick(&mut self, ctx: &egui::Context) {

@@ -548,3 +548,20 @@ fn the_export_dialog_writes_the_selected_mesh_in_scene_placement() {
     );
     assert!(!app.export.open);
 }
+
+#[test]
+fn the_camera_moves_from_the_keyboard() {
+    let mut h = harness(App::demo());
+    let before = h.state().camera;
+    h.key_press(Key::ArrowLeft);
+    h.run_steps(1);
+    let after = h.state().camera;
+    let turned = (after.azimuth_deg - before.azimuth_deg).rem_euclid(360.0);
+    assert!((turned - 355.0).abs() < 1e-3, "{turned}");
+    h.key_press(Key::Plus);
+    h.run_steps(1);
+    assert!(h.state().camera.half_height < 0.81 * after.half_height);
+    h.key_press(Key::F);
+    h.run_steps(2);
+    assert!((h.state().camera.half_height - before.half_height).abs() < 1e-4 * before.half_height);
+}
