@@ -112,6 +112,20 @@ fn drag_step(c: &mut Criterion) {
         );
     }
     g.finish();
+    // For comparison: what every edit cost before live updates, a full rebuild and upload.
+    let mut g = c.benchmark_group("app_full_rebuild_100k_control_triangles");
+    g.sample_size(10);
+    let mut app = app(ViewMode::Shaded);
+    let mut renderer = ViewRenderer::new(&device);
+    g.bench_function("resample+upload whole object/shaded", |b| {
+        b.iter(|| {
+            app.doc.scene.objects[0].touch();
+            app.update_geometry();
+            renderer.upload(&device, &queue, &app.cache.geometry);
+            wait(&device, &queue);
+        })
+    });
+    g.finish();
 }
 
 fn frame(c: &mut Criterion) {
