@@ -8,7 +8,6 @@ use std::sync::Arc;
 
 use pssurf::interrogate::CurvatureQuantity;
 use pssurf_viz::colormap::ColorScale;
-use pssurf_viz::plot::Range;
 
 use crate::camera::OrbitCamera;
 use crate::display::{self, DisplaySettings, ObjectMesh, ViewMode};
@@ -143,6 +142,8 @@ pub struct App {
     pub drag: Option<(usize, usize, usize)>,
     /// Frame the scene at the next draw.
     pub frame_pending: bool,
+    /// Frame the selected object at the next draw.
+    pub frame_selection_pending: bool,
     /// The Export dialog.
     pub export: crate::export::ExportDialog,
     /// The wgpu device and queue (for offscreen pictures), when running on wgpu.
@@ -183,6 +184,7 @@ impl App {
             probe_key: None,
             drag: None,
             frame_pending: true,
+            frame_selection_pending: false,
             new_surface: Default::default(),
             export: Default::default(),
             render_state: None,
@@ -472,6 +474,18 @@ impl App {
         self.frame_pending = false;
     }
 
+    /// Fits the camera to the selected object (to everything when nothing visible is
+    /// selected).
+    pub fn frame_selection(&mut self, aspect: f32) {
+        self.update_geometry();
+        let mesh = self.selection.object.and_then(|i| self.object_mesh(i));
+        match mesh.and_then(|m| display::bounds([m])) {
+            Some((lo, hi)) => self.camera.frame(lo, hi, aspect),
+            None => self.frame_all(aspect),
+        }
+        self.frame_selection_pending = false;
+    }
+
     /// Draws the whole application.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.shortcuts(ui.ctx());
@@ -618,6 +632,9 @@ impl App {
                 if ui.button("Frame all (F)").clicked() {
                     self.frame_pending = true;
                 }
+                if ui.button("Frame selection (Shift+F)").clicked() {
+                    self.frame_selection_pending = true;
+                }
                 ui.checkbox(&mut self.display.flat, "Flat shading");
             });
         });
@@ -626,6 +643,9 @@ impl App {
     fn shortcuts(&mut self, ctx: &egui::Context) {
         if ctx.egui_wants_keyboard_input() {
             return;
+        }
+        if ctx.input_mut(|i| i.consume_key(egui::Modifiers::SHIFT, egui::Key::F)) {
+            self.frame_selection_pending = true;
         }
         let (undo, redo, frame) = ctx.input_mut(|i| {
             let redo = i.consume_key(
@@ -697,15 +717,6 @@ impl App {
                     self.error = None;
                 }
             });
-    }
-
-    /// The range setting as text for the UI.
-    pub fn range_text(&self) -> String {
-        match self.display.range {
-            Range::Auto => "auto".into(),
-            Range::Fixed(a, b) => format!("{a},{b}"),
-            Range::Contrast(c) => format!("contrast {c}"),
-        }
     }
 }
 

@@ -211,21 +211,7 @@ pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
                     ui.selectable_value(&mut d.colormap, name.to_string(), name);
                 }
             });
-        let mut contrast = matches!(d.range, Range::Contrast(_));
-        ui.horizontal(|ui| {
-            ui.radio_value(&mut contrast, false, "auto range");
-            ui.radio_value(&mut contrast, true, "contrast C");
-            if contrast {
-                let mut c = match d.range {
-                    Range::Contrast(c) => c,
-                    _ => 1.0,
-                };
-                ui.add(egui::DragValue::new(&mut c).speed(0.05).range(1e-6..=1e6));
-                d.range = Range::Contrast(c);
-            } else {
-                d.range = Range::Auto;
-            }
-        });
+        range_ui(ui, &mut d.range);
     }
     if d.mode == ViewMode::Zebra {
         ui.add(egui::Slider::new(&mut d.zebra_width_deg, 1.0..=20.0).text("band width °"));
@@ -251,6 +237,62 @@ pub fn display_ui(app: &mut App, ui: &mut egui::Ui) {
         ui.checkbox(&mut d.overlays.control, "control triangles");
         ui.checkbox(&mut d.overlays.boundary, "boundary");
     });
+}
+
+/// The colour range: automatic, the seed's contrast curve with C, or a fixed interval.
+fn range_ui(ui: &mut egui::Ui, range: &mut Range) {
+    #[derive(PartialEq)]
+    enum Kind {
+        Auto,
+        Contrast,
+        Fixed,
+    }
+    let mut kind = match range {
+        Range::Auto => Kind::Auto,
+        Range::Contrast(_) => Kind::Contrast,
+        Range::Fixed(..) => Kind::Fixed,
+    };
+    ui.horizontal(|ui| {
+        ui.radio_value(&mut kind, Kind::Auto, "auto range")
+            .on_hover_text("Symmetric about 0 at the 98th percentile of |q| for signed quantities");
+        ui.radio_value(&mut kind, Kind::Contrast, "contrast C")
+            .on_hover_text("The seed's contrast curve");
+        ui.radio_value(&mut kind, Kind::Fixed, "fixed");
+    });
+    *range = match kind {
+        Kind::Auto => Range::Auto,
+        Kind::Contrast => {
+            let mut c = match *range {
+                Range::Contrast(c) => c,
+                _ => 1.0,
+            };
+            ui.horizontal(|ui| {
+                let l = ui.label("C");
+                ui.add(egui::DragValue::new(&mut c).speed(0.05).range(1e-6..=1e6))
+                    .labelled_by(l.id);
+            });
+            Range::Contrast(c)
+        }
+        Kind::Fixed => {
+            let (mut lo, mut hi) = match *range {
+                Range::Fixed(a, b) => (a, b),
+                _ => (-1.0, 1.0),
+            };
+            ui.horizontal(|ui| {
+                let l = ui.label("from");
+                ui.add(egui::DragValue::new(&mut lo).speed(0.01))
+                    .labelled_by(l.id);
+                let l = ui.label("to");
+                ui.add(egui::DragValue::new(&mut hi).speed(0.01))
+                    .labelled_by(l.id);
+            });
+            // Keep the interval non-empty.
+            if hi <= lo {
+                hi = lo + 1e-9_f64.max(lo.abs() * 1e-9);
+            }
+            Range::Fixed(lo, hi)
+        }
+    };
 }
 
 /// The probe's settings and values.

@@ -50,6 +50,9 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     if app.frame_pending {
         app.frame_all(rect.width() / rect.height().max(1.0));
     }
+    if app.frame_selection_pending {
+        app.frame_selection(rect.width() / rect.height().max(1.0));
+    }
     let ppp = ui.ctx().pixels_per_point();
     let size = [
         (rect.width() * ppp).round().max(1.0) as u32,

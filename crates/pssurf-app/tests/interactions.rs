@@ -565,3 +565,26 @@ fn the_camera_moves_from_the_keyboard() {
     h.run_steps(2);
     assert!((h.state().camera.half_height - before.half_height).abs() < 1e-4 * before.half_height);
 }
+
+#[test]
+fn a_fixed_colour_range_and_frame_selection_from_the_ui() {
+    let mut app = App::demo();
+    app.selection.object = Some(1);
+    let mut h = harness(app);
+    h.get_by_label("fixed").click();
+    h.run_steps(2);
+    h.get_by_label("from").set_value_accesskit(-0.5);
+    h.get_by_label("to").set_value_accesskit(2.0);
+    h.run_steps(3);
+    match h.state().cache.scale {
+        Some(pssurf_viz::colormap::ColorScale::Linear { lo, hi }) => {
+            assert_eq!((lo, hi), (-0.5, 2.0));
+        }
+        ref other => panic!("{other:?}"),
+    }
+    h.key_press_modifiers(Modifiers::SHIFT, Key::F);
+    h.run_steps(2);
+    let app = h.state();
+    let (lo, hi) = pssurf_app::display::bounds([app.object_mesh(1).unwrap()]).unwrap();
+    assert!((app.camera.target - 0.5 * (lo + hi)).norm() < 1e-5);
+}
