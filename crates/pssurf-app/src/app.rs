@@ -37,6 +37,8 @@ pub struct GeometryCache {
     pub geometry: Arc<FrameGeometry>,
     /// The colour scale of a curvature plot (for the legend).
     pub scale: Option<ColorScale>,
+    /// The diameter of the drawn meshes' bounding box at the last rebuild (0 before one).
+    pub diameter: f64,
     /// Where each visible object lies in `geometry`.
     pub ranges: Vec<ObjectRange>,
 }
@@ -335,7 +337,7 @@ impl App {
         }
         let live: std::collections::HashSet<u64> = key.iter().map(|k| k.0).collect();
         self.cache.meshes.retain(|r, _| live.contains(r));
-        for o in self.doc.scene.objects.iter().filter(|o| o.visible) {
+        for (_, o) in self.doc.scene.visible() {
             if !self.cache.meshes.contains_key(&o.revision) {
                 self.cache
                     .meshes
@@ -345,10 +347,7 @@ impl App {
         let visible: Vec<(usize, u64)> = self
             .doc
             .scene
-            .objects
-            .iter()
-            .enumerate()
-            .filter(|(_, o)| o.visible)
+            .visible()
             .map(|(i, o)| (i, o.revision))
             .collect();
         let diameter = display::bounds(self.cache.meshes.values())
@@ -371,6 +370,7 @@ impl App {
                 .collect();
             self.cache.scale = display::colorize(&mut meshes, &self.display, diameter);
         }
+        self.cache.diameter = diameter;
         let mut g = FrameGeometry {
             generation: crate::scene::fresh_revision(),
             ..Default::default()
@@ -402,12 +402,14 @@ impl App {
             .and_then(|o| self.cache.meshes.get(&o.revision))
     }
 
-    /// The diameter of the visible scene (1 when empty).
+    /// The diameter of the drawn scene at the last geometry rebuild (1 before one); cheap,
+    /// so the view can use it every frame.
     pub fn scene_size(&self) -> f64 {
-        display::bounds(self.cache.meshes.values())
-            .map(|(lo, hi)| (hi - lo).norm() as f64)
-            .filter(|d| *d > 0.0)
-            .unwrap_or(1.0)
+        if self.cache.diameter > 0.0 {
+            self.cache.diameter
+        } else {
+            1.0
+        }
     }
 
     /// Puts the probe on object `object` at parameters `uv` (removes it outside the domain).
@@ -427,23 +429,18 @@ impl App {
     /// settings changed.
     pub fn refresh_probe(&mut self) {
         if let Some(p) = &self.probe {
-            let stale = match self.doc.scene.objects.get(p.object) {
-                None => true,
-                Some(o) => o.revision != p.revision,
-            };
+            // Follow the object by identity: deleting another object moves it in the list.
+            let found = self.doc.scene.index_of(p.id);
+            let stale = found
+                .is_none_or(|i| i != p.object || self.doc.scene.objects[i].revision != p.revision);
             let realigned = self
                 .probe_key
                 .is_some_and(|(_, s)| s.alignment != self.probe_settings.alignment);
             if stale || realigned {
-                let (object, uv) = (p.object, p.uv);
+                let uv = p.uv;
                 let size = self.scene_size();
-                self.probe = probe_at(
-                    &self.doc.scene,
-                    object,
-                    uv,
-                    self.probe_settings.alignment,
-                    size,
-                );
+                let alignment = self.probe_settings.alignment;
+                self.probe = found.and_then(|i| probe_at(&self.doc.scene, i, uv, alignment, size));
             }
         }
         let key = self
@@ -588,21 +585,23 @@ impl App {
                 }
             });
             ui.menu_button("New", |ui| {
-                if ui
-                    .button("UPS patch…")
-                    .on_hover_text("A 3–6-sided UPS patch interpolating a height formula")
-                    .clicked()
-                {
-                    self.new_surface.shape = crate::create::Shape::Formula;
-                    self.new_surface.open = true;
-                }
-                if ui
-                    .button("Quadric…")
-                    .on_hover_text("z = a x² + b xy + c y², reproduced exactly")
-                    .clicked()
-                {
-                    self.new_surface.shape = crate::create::Shape::Quadric;
-                    self.new_surface.open = true;
+                use crate::create::Shape;
+                for (label, tip, shape) in [
+                    (
+                        "UPS patch…",
+                        "A 3–6-sided UPS patch interpolating a height formula",
+                        Shape::Formula,
+                    ),
+                    (
+                        "Quadric…",
+                        "z = a x² + b xy + c y², reproduced exactly",
+                        Shape::Quadric,
+                    ),
+                ] {
+                    if ui.button(label).on_hover_text(tip).clicked() {
+                        self.new_surface.shape = shape;
+                        self.new_surface.open = true;
+                    }
                 }
             });
             ui.menu_button("Edit", |ui| {

@@ -115,19 +115,13 @@ impl NewSurface {
     }
 }
 
-/// The bounding box of a grid's vertices.
+/// The bounding box of a grid's polygon (that of its corners).
 fn grid_bounds(grid: &UpsGrid) -> (Point2<f64>, Point2<f64>) {
-    let lattice = grid.lattice();
-    grid.real_slots().iter().fold(
-        (
-            Point2::new(f64::INFINITY, f64::INFINITY),
-            Point2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
-        ),
-        |(lo, hi), &s| {
-            let p = lattice.point(grid.lattice_point(s));
-            (lo.inf(&p), hi.sup(&p))
-        },
-    )
+    let corners = grid.polygon().vertices().iter();
+    let points: Vec<Point2<f64>> = corners.map(|&c| grid.lattice().point(c)).collect();
+    let lo = points.iter().fold(points[0], |a, p| a.inf(p));
+    let hi = points.iter().fold(points[0], |a, p| a.sup(p));
+    (lo, hi)
 }
 
 /// Adds the dialog's surface to the scene as one undoable edit and selects it.

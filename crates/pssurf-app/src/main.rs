@@ -128,3 +128,27 @@ fn main() -> Result<()> {
     )
     .map_err(|e| anyhow::anyhow!("could not start the window: {e}"))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_options_are_clear_errors() {
+        assert_eq!(parse_probe("1, 0.2,-0.1").unwrap(), (1, 0.2, -0.1));
+        for bad in ["1,0.2", "x,0,0", "1,nan,0", "1,0,inf", "1,0,0,0"] {
+            assert!(parse_probe(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_mode("wireframe").unwrap(), ViewMode::Wireframe);
+        assert_eq!(
+            parse_mode("H").unwrap(),
+            ViewMode::Curvature(CurvatureQuantity::Mean)
+        );
+        let e = parse_mode("glossy").unwrap_err().to_string();
+        assert!(e.contains("shaded, zebra, wireframe"), "{e}");
+        assert_eq!(parse_size("800x600").unwrap(), (800.0, 600.0));
+        for bad in ["800", "10x10", "axb", "99999x600"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+    }
+}

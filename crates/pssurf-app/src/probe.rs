@@ -50,8 +50,10 @@ impl Default for ProbeSettings {
 /// A probed surface point, everything in scene coordinates.
 #[derive(Clone, Debug)]
 pub struct Probe {
-    /// The object.
+    /// The object's index when probed.
     pub object: usize,
+    /// The object's identity (see `SceneObject::id`).
+    pub id: u64,
     /// The object's revision when probed (the probe is recomputed when it changes).
     pub revision: u64,
     /// The parameters.
@@ -145,6 +147,7 @@ pub fn probe_at(
     });
     Some(Probe {
         object,
+        id: o.id,
         revision: o.revision,
         uv,
         point: to_scene(&jet.value),

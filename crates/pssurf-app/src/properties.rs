@@ -1,5 +1,6 @@
-//! The selected object's properties (name, placement), the numeric editor of the selected
-//! vertex's control triangle (like the thesis' Figure 6.12), and the display settings.
+//! The selected object's properties (name, group, material, placement), the numeric editor of the selected
+//! vertex's control triangle (like the thesis' Figure 6.12), the display settings and the
+//! probe panel.
 
 use pssurf::interrogate::CurvatureQuantity;
 use pssurf_viz::colormap::ColorMap;

@@ -117,6 +117,10 @@ pub struct SceneObject {
     /// A number that changes whenever the surface or transform changes (display caches key
     /// on it; it is not saved).
     pub revision: u64,
+    /// Identifies the object for as long as the application runs (kept by copies, so
+    /// through undo and redo; not saved): what refers to an object across edits that may
+    /// move it in the list uses this, not its index.
+    pub id: u64,
 }
 
 /// A fresh revision number, never seen before in this process.
@@ -136,6 +140,7 @@ impl SceneObject {
             transform: Transform::default(),
             surface,
             revision: fresh_revision(),
+            id: fresh_revision(),
         }
     }
 
@@ -201,6 +206,16 @@ fn yes() -> bool {
 }
 
 impl Scene {
+    /// The index of the object with identity `id` (see [`SceneObject::id`]).
+    pub fn index_of(&self, id: u64) -> Option<usize> {
+        self.objects.iter().position(|o| o.id == id)
+    }
+
+    /// The visible objects with their indices.
+    pub fn visible(&self) -> impl Iterator<Item = (usize, &SceneObject)> {
+        self.objects.iter().enumerate().filter(|(_, o)| o.visible)
+    }
+
     /// The scene as the JSON text of a scene file.
     pub fn to_json(&self) -> String {
         let file = SceneFile {
@@ -265,6 +280,7 @@ impl Scene {
                 transform: o.transform,
                 surface,
                 revision: fresh_revision(),
+                id: fresh_revision(),
             });
         }
         Ok(Scene { objects })

@@ -172,14 +172,7 @@ pub fn probe(app: &mut App, rect: Rect, pos: Pos2) {
     let (x, y) = ndc(rect, pos);
     let (origin, dir) = app.camera.ray(x, y, rect.width() / rect.height().max(1.0));
     let mut best: Option<(usize, f32, Point2<f64>)> = None;
-    for (i, _) in app
-        .doc
-        .scene
-        .objects
-        .iter()
-        .enumerate()
-        .filter(|(_, o)| o.visible)
-    {
+    for (i, _) in app.doc.scene.visible() {
         let Some(m) = app.object_mesh(i) else {
             continue;
         };

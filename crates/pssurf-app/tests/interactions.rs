@@ -588,3 +588,52 @@ fn a_fixed_colour_range_and_frame_selection_from_the_ui() {
     let (lo, hi) = pssurf_app::display::bounds([app.object_mesh(1).unwrap()]).unwrap();
     assert!((app.camera.target - 0.5 * (lo + hi)).norm() < 1e-5);
 }
+
+#[test]
+fn exports_with_bad_settings_fail_with_a_message_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut app = App::demo();
+    app.update_geometry();
+    let path = dir.path().join("x.png");
+    let e = pssurf_app::export::export_picture(&mut app, &path, [8, 600]).unwrap_err();
+    assert!(e.contains("between 16 and 8192"), "{e}");
+    // No GPU in this test: a clear message instead of a picture.
+    let e = pssurf_app::export::export_picture(&mut app, &path, [800, 600]).unwrap_err();
+    assert!(e.contains("wgpu"), "{e}");
+    app.selection.object = None;
+    let e = pssurf_app::export::export_mesh(
+        &app,
+        &dir.path().join("m.ply"),
+        pssurf_viz::MeshFormat::Ply,
+    )
+    .unwrap_err();
+    assert!(e.contains("select"), "{e}");
+    app.export.path = "  ".into();
+    pssurf_app::export::run(&mut app);
+    assert!(
+        app.error
+            .as_deref()
+            .is_some_and(|e| e.contains("file name"))
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn the_probe_follows_its_object_when_another_is_deleted() {
+    let mut app = App::demo();
+    app.update_geometry();
+    app.set_probe(1, Point2::new(0.1, 0.2));
+    let before = app.probe.clone().unwrap();
+    let _ = app.doc.edit::<()>("delete", |s| {
+        s.objects.remove(0);
+        Ok(())
+    });
+    app.refresh_probe();
+    let p = app.probe.clone().expect("still probing the paraboloid");
+    assert_eq!((p.object, p.id), (0, before.id));
+    assert_eq!(p.uv, before.uv);
+    // Undo brings the deleted object back in front; the probe moves with the paraboloid.
+    app.undo();
+    app.refresh_probe();
+    assert_eq!(app.probe.as_ref().unwrap().object, 1);
+}

@@ -43,18 +43,19 @@ pub fn random_dir(rng: &mut ChaCha8Rng) -> Vector2<f64> {
     Vector2::new(a.cos(), a.sin())
 }
 
+/// A random point of [−1, 1]³.
+pub fn random_vec3(r: &mut ChaCha8Rng) -> nalgebra::Vector3<f64> {
+    nalgebra::Vector3::new(
+        uniform(r, -1.0, 1.0),
+        uniform(r, -1.0, 1.0),
+        uniform(r, -1.0, 1.0),
+    )
+}
+
 /// `n` triples of random points of [−1, 1]³ (control points of random surfaces).
 pub fn random_vec3_triples(r: &mut ChaCha8Rng, n: usize) -> Vec<[nalgebra::Vector3<f64>; 3]> {
     (0..n)
-        .map(|_| {
-            std::array::from_fn(|_| {
-                nalgebra::Vector3::new(
-                    uniform(r, -1.0, 1.0),
-                    uniform(r, -1.0, 1.0),
-                    uniform(r, -1.0, 1.0),
-                )
-            })
-        })
+        .map(|_| std::array::from_fn(|_| random_vec3(r)))
         .collect()
 }
 

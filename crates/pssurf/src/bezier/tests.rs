@@ -557,15 +557,7 @@ fn curves_match_closed_forms() {
 fn curve_subdivision_leaves_the_curve_unchanged() {
     let mut r = rng(11);
     for d in 0..8 {
-        let pts: Vec<Vector3<f64>> = (0..=d)
-            .map(|_| {
-                Vector3::new(
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                )
-            })
-            .collect();
+        let pts: Vec<Vector3<f64>> = (0..=d).map(|_| random_vec3(&mut r)).collect();
         let w: Vec<f64> = (0..=d).map(|_| uniform(&mut r, 0.1, 10.0)).collect();
         let poly = BezierCurve::new(pts.clone());
         let rat = RationalBezierCurve::new(pts, w);

@@ -106,53 +106,34 @@ fn sample_with<S: PatchwiseSurface + ?Sized>(
         },
     };
     let local = grid_triangles(n);
-    let fill = |j: usize, chunk: PatchChunk<'_>| {
-        fill_patch(surface, piece(j), n, &local, (j * per_vertex) as u32, chunk)
+    // One optional curvature slice per slot, so that both cases share one parallel loop.
+    let curvature: Vec<Option<&mut [PrincipalCurvatures]>> = if with_curvature {
+        out.curvature.chunks_mut(per_vertex).map(Some).collect()
+    } else {
+        (0..slots).map(|_| None).collect()
     };
     let mesh = &mut out.mesh;
-    let chunks = mesh
-        .positions
+    mesh.positions
         .par_chunks_mut(per_vertex)
         .zip(mesh.normals.par_chunks_mut(per_vertex))
         .zip(mesh.uvs.par_chunks_mut(per_vertex))
         .zip(out.patch.par_chunks_mut(per_vertex))
-        .zip(mesh.triangles.par_chunks_mut(per_triangle));
-    if with_curvature {
-        chunks
-            .zip(out.curvature.par_chunks_mut(per_vertex))
-            .enumerate()
-            .for_each(
-                |(j, (((((positions, normals), uvs), patch), triangles), curvature))| {
-                    fill(
-                        j,
-                        PatchChunk {
-                            positions,
-                            normals,
-                            uvs,
-                            patch,
-                            triangles,
-                            curvature: Some(curvature),
-                        },
-                    )
-                },
-            );
-    } else {
-        chunks
-            .enumerate()
-            .for_each(|(j, ((((positions, normals), uvs), patch), triangles))| {
-                fill(
-                    j,
-                    PatchChunk {
-                        positions,
-                        normals,
-                        uvs,
-                        patch,
-                        triangles,
-                        curvature: None,
-                    },
-                )
-            });
-    }
+        .zip(mesh.triangles.par_chunks_mut(per_triangle))
+        .zip(curvature)
+        .enumerate()
+        .for_each(
+            |(j, (((((positions, normals), uvs), patch), triangles), curvature))| {
+                let chunk = PatchChunk {
+                    positions,
+                    normals,
+                    uvs,
+                    patch,
+                    triangles,
+                    curvature,
+                };
+                fill_patch(surface, piece(j), n, &local, (j * per_vertex) as u32, chunk)
+            },
+        );
     out
 }
 

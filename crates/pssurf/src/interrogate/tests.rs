@@ -286,15 +286,7 @@ fn rational_derivatives_agree_with_finite_differences() {
         Point2::new(0.2, 0.9),
     );
     for _ in 0..10 {
-        let pts: Vec<Vector3<f64>> = (0..6)
-            .map(|_| {
-                Vector3::new(
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                )
-            })
-            .collect();
+        let pts: Vec<Vector3<f64>> = (0..6).map(|_| random_vec3(&mut r)).collect();
         let w: Vec<f64> = (0..6).map(|_| uniform(&mut r, 0.2, 5.0)).collect();
         let s = RationalBezierTriangle::try_new(t, 2, pts, w).unwrap();
         let p = t.point([0.3, 0.35, 0.35]);
@@ -376,15 +368,7 @@ fn curvature_is_invariant_under_affine_reparametrisation_and_orientation_flips_h
     let mut r = rng(408);
     for _ in 0..50 {
         let t = random_triangle(&mut r);
-        let pts: Vec<Vector3<f64>> = (0..10)
-            .map(|_| {
-                Vector3::new(
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                    uniform(&mut r, -1.0, 1.0),
-                )
-            })
-            .collect();
+        let pts: Vec<Vector3<f64>> = (0..10).map(|_| random_vec3(&mut r)).collect();
         let s = BezierTriangle::new(t, 3, pts.clone());
         let a = Matrix2::new(
             uniform(&mut r, -2.0, 2.0),

@@ -6,6 +6,7 @@
 use nalgebra::{Point2, Vector3};
 
 use super::{Ups, UpsGrid};
+#[cfg(feature = "expr")]
 use crate::expr::{ExprError, HeightFunction};
 use crate::ps::Hermite;
 use crate::surface::UpsSurface;
@@ -50,6 +51,7 @@ pub fn graph_surface(
 
 /// [`graph_surface`] of a formula; an error names the first vertex where the formula has no
 /// finite value or gradient.
+#[cfg(feature = "expr")]
 pub fn graph_surface_from_formula(
     grid: UpsGrid,
     kind: GraphKind,
@@ -76,43 +78,75 @@ pub fn graph_surface_from_formula(
 mod tests {
     use super::*;
     use crate::surface::{ParametricSurface, Surface};
+    use crate::test_util::*;
     use crate::ups::{Lattice, LatticePolygon};
 
-    #[test]
-    fn every_kind_reproduces_a_quadric_exactly_and_bad_formulas_are_errors() {
+    const KINDS: [GraphKind; 3] = [
+        GraphKind::Functional,
+        GraphKind::Parametric,
+        GraphKind::Rational,
+    ];
+
+    fn grid(sides: usize, r: &mut rand_chacha::ChaCha8Rng) -> UpsGrid {
         let lattice = Lattice {
-            base: 0.25,
-            origin: Point2::new(-0.5, -0.4),
+            base: uniform(r, 0.1, 0.4),
+            origin: Point2::new(uniform(r, -1.0, 0.0), uniform(r, -1.0, 0.0)),
         };
+        UpsGrid::new(lattice, LatticePolygon::standard(sides, 3).unwrap()).unwrap()
+    }
+
+    /// max |s(p) − (x, y, q(x, y))| at a random point of every triangle.
+    fn error(s: &Surface, q: impl Fn(f64, f64) -> f64, r: &mut rand_chacha::ChaCha8Rng) -> f64 {
+        let g = s.general();
+        let tri = g.basis().triangulation();
+        (0..tri.triangle_count())
+            .map(|t| {
+                let v = tri.triangle(t);
+                let b = random_bary(r);
+                let c: Point2<f64> = (tri.vertex(v[0]).coords * b[0]
+                    + tri.vertex(v[1]).coords * b[1]
+                    + tri.vertex(v[2]).coords * b[2])
+                    .into();
+                (g.point(c).unwrap() - Vector3::new(c.x, c.y, q(c.x, c.y))).norm()
+            })
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn every_kind_reproduces_random_quadrics_exactly() {
+        let mut r = rng(61);
         for sides in 3..=6 {
-            let grid = UpsGrid::new(lattice, LatticePolygon::standard(sides, 3).unwrap()).unwrap();
-            let q = HeightFunction::parse("0.7*x^2 - 1.2*x*y + 0.3*y^2 + x - 2").unwrap();
-            for kind in [
-                GraphKind::Functional,
-                GraphKind::Parametric,
-                GraphKind::Rational,
-            ] {
-                let s = Surface::from(graph_surface_from_formula(grid.clone(), kind, &q).unwrap());
-                let g = s.general();
-                let tri = g.basis().triangulation();
-                for t in 0..tri.triangle_count() {
-                    let v = tri.triangle(t);
-                    let c = (tri.vertex(v[0]).coords * 0.2
-                        + tri.vertex(v[1]).coords * 0.3
-                        + tri.vertex(v[2]).coords * 0.5)
-                        .into();
-                    let p = g.point(c).unwrap();
-                    let (x, y) = (c.x, c.y);
-                    let z = 0.7 * x * x - 1.2 * x * y + 0.3 * y * y + x - 2.0;
-                    assert!(
-                        (p - Vector3::new(x, y, z)).norm() < 1e-12,
-                        "{kind:?} {sides}"
-                    );
-                }
+            for kind in KINDS {
+                let a: [f64; 6] = std::array::from_fn(|_| uniform(&mut r, -2.0, 2.0));
+                let q = move |x: f64, y: f64| {
+                    a[0] * x * x + a[1] * x * y + a[2] * y * y + a[3] * x + a[4] * y + a[5]
+                };
+                let s = Surface::from(graph_surface(grid(sides, &mut r), kind, |p| Hermite {
+                    value: q(p.x, p.y),
+                    dx: 2.0 * a[0] * p.x + a[1] * p.y + a[3],
+                    dy: a[1] * p.x + 2.0 * a[2] * p.y + a[4],
+                }));
+                let e = error(&s, q, &mut r);
+                assert!(e < 1e-12, "{kind:?}, {sides} sides: {e}");
             }
-            let bad = HeightFunction::parse("ln(x)").unwrap();
+        }
+    }
+
+    #[cfg(feature = "expr")]
+    #[test]
+    fn a_formula_gives_the_same_surface_and_bad_formulas_are_errors() {
+        let mut r = rng(62);
+        for sides in 3..=6 {
+            let g = grid(sides, &mut r);
+            let f = HeightFunction::parse("0.7*x^2 - 1.2*x*y + 0.3*y^2 + x - 2").unwrap();
+            let q = |x: f64, y: f64| 0.7 * x * x - 1.2 * x * y + 0.3 * y * y + x - 2.0;
+            for kind in KINDS {
+                let s = Surface::from(graph_surface_from_formula(g.clone(), kind, &f).unwrap());
+                assert!(error(&s, q, &mut r) < 1e-12, "{kind:?} {sides}");
+            }
+            let bad = HeightFunction::parse("ln(x - 100)").unwrap();
             assert!(matches!(
-                graph_surface_from_formula(grid, GraphKind::Parametric, &bad),
+                graph_surface_from_formula(g, GraphKind::Parametric, &bad),
                 Err(ExprError::NotFinite { .. })
             ));
         }

@@ -11,7 +11,9 @@ pub mod subdivision;
 pub mod threshold;
 pub mod wavelet;
 
-pub use create::{GraphKind, graph_surface, graph_surface_from_formula};
+#[cfg(feature = "expr")]
+pub use create::graph_surface_from_formula;
+pub use create::{GraphKind, graph_surface};
 pub use grid::UpsGrid;
 pub use lattice::{Lattice, LatticePoint, LatticePolygon};
 pub use spline::{Ups, fixed_ps_triangle};
