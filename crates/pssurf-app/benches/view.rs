@@ -18,7 +18,7 @@ use pssurf_app::scene::{Scene, SceneObject};
 use pssurf_app::view3d::uniforms;
 
 /// A functional PS-spline on the Delaunay triangulation of a jittered n × n grid.
-fn surface(n: usize) -> PsSurface {
+fn surface(n: usize) -> Surface {
     let mut pts = Vec::with_capacity(n * n);
     for j in 0..n {
         for i in 0..n {
@@ -35,7 +35,7 @@ fn surface(n: usize) -> PsSurface {
     }
     let tri = Triangulation::delaunay(pts).expect("grid triangulates");
     let basis = Arc::new(PsBasis::optimal(tri).expect("PS basis"));
-    PsSurface::Functional(
+    Surface::Functional(
         PsSpline::interpolate(basis, |p| Hermite {
             value: (6.0 * p.x).sin() * (5.0 * p.y).cos() * 0.2,
             dx: 1.2 * (6.0 * p.x).cos() * (5.0 * p.y).cos(),
@@ -46,7 +46,7 @@ fn surface(n: usize) -> PsSurface {
 }
 
 fn app(mode: ViewMode) -> App {
-    let object = SceneObject::new("big", surface(317).into());
+    let object = SceneObject::new("big", surface(317));
     let mut app = App::new(
         Scene {
             objects: vec![object],

@@ -57,8 +57,8 @@ pub struct ObjectRange {
 }
 
 impl GeometryCache {
-    /// After the control triangle of `vertex` of object `object` changed (its revision was
-    /// `old`), updates only that vertex's molecule in the object's mesh and in the combined
+    /// After control group `vertex` of object `object` changed (its revision was `old`),
+    /// updates only `pieces` (the group's support) in the object's mesh and in the combined
     /// geometry, and records the rewritten ranges for the GPU upload. Does nothing when the
     /// object was not drawn with these settings (the next [`App::update_geometry`] then
     /// rebuilds it). The colour scale of a curvature plot is kept as it was.
@@ -68,6 +68,7 @@ impl GeometryCache {
         object: usize,
         old: u64,
         vertex: usize,
+        pieces: &[usize],
         display: &DisplaySettings,
     ) {
         let Some((key, settings)) = &mut self.key else {
@@ -85,7 +86,7 @@ impl GeometryCache {
         };
         let map = display::color_map(display);
         let paint = self.scale.as_ref().map(|s| (&map, s));
-        let changed = display::update_vertex(&mut mesh, o, display, vertex, paint);
+        let changed = display::update_vertex(&mut mesh, o, display, vertex, pieces, paint);
         let g = Arc::make_mut(&mut self.geometry);
         let shift = |rs: &[std::ops::Range<usize>], by: usize| -> Vec<std::ops::Range<usize>> {
             rs.iter().map(|r| r.start + by..r.end + by).collect()
@@ -277,14 +278,15 @@ impl App {
         c: VertexControl,
     ) -> Result<(), String> {
         let old = self.doc.scene.objects[object].revision;
+        let mut pieces = Vec::new();
         self.doc.edit("edit control points", |scene| {
             let o = &mut scene.objects[object];
-            edit::set_vertex_control(&mut o.surface, vertex, &c)?;
+            pieces = edit::set_vertex_control(&mut o.surface, vertex, &c)?;
             o.touch();
             Ok::<(), String>(())
         })?;
         self.cache
-            .update_vertex(&self.doc.scene, object, old, vertex, &self.display);
+            .update_vertex(&self.doc.scene, object, old, vertex, &pieces, &self.display);
         Ok(())
     }
 
@@ -298,7 +300,7 @@ impl App {
         c: VertexControl,
     ) -> Result<(), String> {
         let old = self.doc.scene.objects[object].revision;
-        let mut result = Ok(());
+        let mut result = Ok(Vec::new());
         self.doc.edit_continuing(|scene| {
             let o = &mut scene.objects[object];
             result = edit::set_vertex_control(&mut o.surface, vertex, &c);
@@ -306,9 +308,9 @@ impl App {
                 o.touch();
             }
         });
-        result?;
+        let pieces = result?;
         self.cache
-            .update_vertex(&self.doc.scene, object, old, vertex, &self.display);
+            .update_vertex(&self.doc.scene, object, old, vertex, &pieces, &self.display);
         Ok(())
     }
 

@@ -5,11 +5,17 @@
 use std::ops::Range as Span;
 
 use nalgebra::{Matrix3, Matrix4, Point3, Vector3};
-use pssurf::interrogate::{CurvatureQuantity, sample_patches, sample_pieces, vertices_per_piece};
-use pssurf::surface::PatchwiseSurface;
+use pssurf::interrogate::{
+    CurvatureQuantity, sample_patches, sample_pieces, triangles_per_piece, vertices_per_piece,
+};
+use pssurf::surface::{PieceKind, PiecewiseSurface};
 use pssurf_viz::colormap::{ColorMap, ColorScale};
-use pssurf_viz::plot::{Overlays, Polyline, Range, control_overlay, range_scale, triangle_overlay};
+use pssurf_viz::plot::{
+    Overlays, Polyline, Range, cell_of_piece, cell_overlay, cell_pieces, control_overlay,
+    overlay_cells, range_scale,
+};
 
+use crate::edit;
 use crate::scene::{Material, SceneObject};
 
 /// What colours the surface.
@@ -133,10 +139,10 @@ pub struct LineVertex {
 
 /// The drawable form of one object.
 ///
-/// The surface vertices are laid out piece by piece as `sample_patches` makes them (piece
-/// k = 6t + sub of triangle t owns vertices `k·m .. (k+1)·m`), and the overlay lines
-/// triangle by triangle (`layout`), so that a local edit rewrites only the slots of the
-/// triangles it touches.
+/// The surface vertices are laid out piece by piece as `sample_patches` makes them (piece k
+/// owns vertices `k·m .. (k+1)·m`), and the overlay lines cell by cell (`layout`; see
+/// `pssurf_viz::plot::overlay_cells`), so that a local edit rewrites only the slots of the
+/// pieces and cells in the support of what it changed.
 #[derive(Clone, Debug, Default)]
 pub struct ObjectMesh {
     /// Surface vertices.
@@ -156,12 +162,15 @@ pub struct ObjectMesh {
 /// Where the parts of an [`ObjectMesh`] lie.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MeshLayout {
-    /// The sampling level (each piece has `vertices_per_piece(level)` vertices).
+    /// The sampling level (each piece has `vertices_per_piece(kind, level)` vertices).
     pub level: u32,
-    /// The overlay line vertices of triangle t are `triangle_lines[t] .. triangle_lines[t+1]`.
-    pub triangle_lines: Vec<usize>,
-    /// The first line vertex of the control triangles (6 per vertex), when drawn.
-    pub control_lines: Option<usize>,
+    /// The shape of the pieces.
+    pub kind: Option<PieceKind>,
+    /// The overlay line vertices of cell t are `cell_lines[t] .. cell_lines[t+1]`.
+    pub cell_lines: Vec<usize>,
+    /// The line vertices of control group g are `control_lines[g] .. control_lines[g+1]`,
+    /// when the control net is drawn.
+    pub control_lines: Option<Vec<usize>>,
 }
 
 /// The parts of an [`ObjectMesh`] that a local update rewrote.
@@ -186,14 +195,12 @@ pub fn scale_for(
 
 /// The sampling level used for an object (the setting, capped by [`max_level`]).
 pub fn display_level(o: &SceneObject, settings: &DisplaySettings) -> u32 {
-    settings
-        .level
-        .min(max_level(o.surface.general().patch_count()))
+    settings.level.min(max_level(o.surface.piece_count()))
 }
 
 /// Samples an object for display, in its material's colour (see [`colorize`]).
 pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
-    let surface = o.surface.general();
+    let surface = &o.surface;
     let level = display_level(o, settings);
     let curvature = matches!(settings.mode, ViewMode::Curvature(_));
     let sampled = sample_patches(surface, level, curvature);
@@ -221,8 +228,8 @@ pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
     }
 }
 
-/// The overlay lines of an object, triangle by triangle (with the tessellation's edges over
-/// it when shown), then the control triangles.
+/// The overlay lines of an object, cell by cell (with the tessellation's edges over it when
+/// shown), then the control net group by group.
 fn object_lines(
     o: &SceneObject,
     settings: &DisplaySettings,
@@ -230,65 +237,62 @@ fn object_lines(
     vertices: &[GpuVertex],
     indices: &[u32],
 ) -> (Vec<LineVertex>, MeshLayout) {
-    let surface = o.surface.general();
+    let surface = &o.surface;
     let placement = Placement::of(o);
-    let tri = surface.basis().triangulation();
     let overlays = &settings.overlays;
+    let kind = surface.piece_kind();
     let mut lines = Vec::new();
-    let mut triangle_lines = vec![0];
-    for t in 0..tri.triangle_count() {
-        for pl in triangle_overlay(surface, overlays, level.min(3), t) {
+    let mut cell_lines = vec![0];
+    for t in 0..overlay_cells(surface) {
+        for pl in cell_overlay(surface, overlays, level.min(3), t) {
             placement.segments(&pl, &mut lines);
         }
         if settings.edges_shown() {
-            mesh_edges(vertices, indices, level, t, &mut lines);
+            let grid = PieceGrid { kind, level };
+            grid.edges(vertices, indices, cell_pieces(surface, t), &mut lines);
         }
-        triangle_lines.push(lines.len());
+        cell_lines.push(lines.len());
     }
     let control_lines = overlays.control.then(|| {
-        let start = lines.len();
-        for i in 0..tri.vertex_count() {
-            placement.segments(&control_overlay(surface, i), &mut lines);
+        let mut offsets = vec![lines.len()];
+        for g in 0..edit::vertex_count(surface) {
+            placement.segments(
+                &control_overlay(surface, edit::group_start(surface, g)),
+                &mut lines,
+            );
+            offsets.push(lines.len());
         }
-        start
+        offsets
     });
     let layout = MeshLayout {
         level,
-        triangle_lines,
+        kind: Some(kind),
+        cell_lines,
         control_lines,
     };
     (lines, layout)
 }
 
-/// Re-samples only the molecule of `vertex` after its control triangle changed (local
-/// support: nothing else moved), recolouring with `paint` in a curvature plot, and rewrites
-/// its overlay lines in place. Returns what changed.
+/// Re-samples only `pieces` (the support of control group `group`, which changed: nothing
+/// else moved), recolouring with `paint` in a curvature plot, and rewrites the overlay lines
+/// of their cells and of the group in place. Returns what changed.
 pub fn update_vertex(
     mesh: &mut ObjectMesh,
     o: &SceneObject,
     settings: &DisplaySettings,
-    vertex: usize,
+    group: usize,
+    pieces: &[usize],
     paint: Option<(&ColorMap, &ColorScale)>,
 ) -> Changed {
-    let surface = o.surface.general();
+    let surface = &o.surface;
     let level = mesh.layout.level;
-    let per = vertices_per_piece(level);
-    let molecule: Vec<usize> = surface
-        .basis()
-        .triangulation()
-        .molecule(vertex)
-        .iter()
-        .map(|&t| t as usize)
-        .collect();
-    let pieces: Vec<usize> = molecule
-        .iter()
-        .flat_map(|&t| (0..6).map(move |sub| 6 * t + sub))
-        .collect();
+    let kind = surface.piece_kind();
+    let per = vertices_per_piece(kind, level);
     let quantity = match settings.mode {
         ViewMode::Curvature(q) => Some(q),
         _ => None,
     };
-    let sampled = sample_pieces(surface, level, quantity.is_some(), &pieces);
+    let sampled = sample_pieces(surface, level, quantity.is_some(), pieces);
     let placement = Placement::of(o);
     let mut changed = Changed::default();
     for (j, &k) in pieces.iter().enumerate() {
@@ -308,24 +312,35 @@ pub fn update_vertex(
         }
         push_range(&mut changed.vertices, dst);
     }
+    let mut cells: Vec<usize> = pieces.iter().map(|&k| cell_of_piece(surface, k)).collect();
+    cells.dedup();
     let overlays = &settings.overlays;
     let mut lines = Vec::new();
-    for &t in &molecule {
-        let slot = mesh.layout.triangle_lines[t]..mesh.layout.triangle_lines[t + 1];
+    for &t in &cells {
+        let slot = mesh.layout.cell_lines[t]..mesh.layout.cell_lines[t + 1];
         lines.clear();
-        for pl in triangle_overlay(surface, overlays, level.min(3), t) {
+        for pl in cell_overlay(surface, overlays, level.min(3), t) {
             placement.segments(&pl, &mut lines);
         }
         if settings.edges_shown() {
-            mesh_edges(&mesh.vertices, &mesh.indices, level, t, &mut lines);
+            let grid = PieceGrid { kind, level };
+            grid.edges(
+                &mesh.vertices,
+                &mesh.indices,
+                cell_pieces(surface, t),
+                &mut lines,
+            );
         }
         write_slot(&mut mesh.lines[slot.clone()], &lines);
         push_range(&mut changed.lines, slot);
     }
-    if let Some(start) = mesh.layout.control_lines {
+    if let Some(offsets) = &mesh.layout.control_lines {
         lines.clear();
-        placement.segments(&control_overlay(surface, vertex), &mut lines);
-        let slot = start + 6 * vertex..start + 6 * vertex + 6;
+        placement.segments(
+            &control_overlay(surface, edit::group_start(surface, group)),
+            &mut lines,
+        );
+        let slot = offsets[group]..offsets[group + 1];
         write_slot(&mut mesh.lines[slot.clone()], &lines);
         push_range(&mut changed.lines, slot);
     }
@@ -340,42 +355,50 @@ pub const EDGE_COLOR: [u8; 4] = [55, 60, 75, 255];
 /// sampled surface).
 pub const EDGE_LEVEL: u32 = 1;
 
-/// Appends the sampled edges of the six pieces of triangle `t` that lie on the grid lines of
-/// level [`EDGE_LEVEL`] (every triangle's edges are visited; an edge inside a piece is drawn
-/// twice, which looks the same).
-fn mesh_edges(
-    vertices: &[GpuVertex],
-    indices: &[u32],
+/// The sampling grid of the pieces of one surface: its shape and level.
+struct PieceGrid {
+    kind: PieceKind,
     level: u32,
-    t: usize,
-    out: &mut Vec<LineVertex>,
-) {
-    let n = 1usize << level;
-    let stride = 1usize << level.saturating_sub(EDGE_LEVEL);
-    let per_vertex = vertices_per_piece(level);
-    let per_piece = 3 * n * n;
-    // (i, j) of each local vertex index, rows of constant j.
-    let ij: Vec<(usize, usize)> = (0..=n)
-        .flat_map(|j| (0..=n - j).map(move |i| (i, j)))
-        .collect();
-    for (k, piece) in indices[6 * t * per_piece..6 * (t + 1) * per_piece]
-        .chunks_exact(per_piece)
-        .enumerate()
-    {
-        let base = (6 * t + k) * per_vertex;
-        for tri in piece.chunks_exact(3) {
-            for e in 0..3 {
-                let (a, b) = (tri[e] as usize, tri[(e + 1) % 3] as usize);
-                let ((ia, ja), (ib, jb)) = (ij[a - base], ij[b - base]);
-                let on_line = (ja == jb && ja % stride == 0)
-                    || (ia == ib && ia % stride == 0)
-                    || (ia + ja == ib + jb && (ia + ja) % stride == 0);
-                if on_line {
-                    for v in [a, b] {
-                        out.push(LineVertex {
-                            position: vertices[v].position,
-                            color: EDGE_COLOR,
-                        });
+}
+
+impl PieceGrid {
+    /// Appends the sampled edges of `pieces` that lie on the grid lines of level
+    /// [`EDGE_LEVEL`] (an edge inside a piece may be drawn twice, which looks the same).
+    fn edges(
+        &self,
+        vertices: &[GpuVertex],
+        indices: &[u32],
+        pieces: Span<usize>,
+        out: &mut Vec<LineVertex>,
+    ) {
+        let n = 1usize << self.level;
+        let stride = 1usize << self.level.saturating_sub(EDGE_LEVEL);
+        let per_vertex = vertices_per_piece(self.kind, self.level);
+        let per_piece = 3 * triangles_per_piece(self.kind, self.level);
+        // (i, j) of each local vertex index, rows of constant j.
+        let ij: Vec<(usize, usize)> = match self.kind {
+            PieceKind::Triangle => (0..=n)
+                .flat_map(|j| (0..=n - j).map(move |i| (i, j)))
+                .collect(),
+            PieceKind::Rectangle => (0..=n).flat_map(|j| (0..=n).map(move |i| (i, j))).collect(),
+        };
+        let diagonals = self.kind == PieceKind::Triangle;
+        for k in pieces {
+            let base = k * per_vertex;
+            for tri in indices[k * per_piece..(k + 1) * per_piece].chunks_exact(3) {
+                for e in 0..3 {
+                    let (a, b) = (tri[e] as usize, tri[(e + 1) % 3] as usize);
+                    let ((ia, ja), (ib, jb)) = (ij[a - base], ij[b - base]);
+                    let on_line = (ja == jb && ja % stride == 0)
+                        || (ia == ib && ia % stride == 0)
+                        || (diagonals && ia + ja == ib + jb && (ia + ja) % stride == 0);
+                    if on_line {
+                        for v in [a, b] {
+                            out.push(LineVertex {
+                                position: vertices[v].position,
+                                color: EDGE_COLOR,
+                            });
+                        }
                     }
                 }
             }

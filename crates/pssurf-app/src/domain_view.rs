@@ -90,7 +90,16 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
         );
         return;
     };
-    let basis = app.doc.scene.objects[i].surface.general().basis().clone();
+    let Some(basis) = app.doc.scene.objects[i].surface.ps_basis().cloned() else {
+        ui.painter().text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "the domain view shows PS surfaces",
+            egui::FontId::proportional(13.0),
+            Color32::GRAY,
+        );
+        return;
+    };
     let tri = basis.triangulation();
     let (lo, hi) = tri.bounds();
     let map = DomainMap::new(lo, hi, rect);

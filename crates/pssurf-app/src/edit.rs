@@ -1,91 +1,89 @@
-//! Reading and changing one vertex's control triangle, for every surface kind. A change
-//! updates only the Bézier nets of the vertex's molecule (local control).
+//! Reading and changing one control group (a PS vertex's control triangle, one Bézier
+//! ordinate) through the library's [`ControlNet`]: the library validates the edit, keeps the
+//! uniform and general forms of a UPS surface in step and reports the pieces to re-sample.
 
 use nalgebra::Vector3;
-use pssurf::ps::net::Weighted;
-use pssurf::surface::{PsSurface, Surface, UpsSurface};
+use pssurf::surface::{ControlFreedom, ControlId, ControlNet, ControlPoint, Surface};
 
-/// The three control points of a vertex (Definition 2.23) and, for NURPS, their weights.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The control points of one group (Definition 2.24 for a PS vertex) and, for rational
+/// surfaces, their weights.
+#[derive(Clone, Debug, PartialEq)]
 pub struct VertexControl {
     /// The control points in space (for a functional surface (X_ij, Y_ij, c_ij): only the
     /// heights can change).
-    pub points: [Vector3<f64>; 3],
+    pub points: Vec<Vector3<f64>>,
     /// The weights of a rational surface.
-    pub weights: Option<[f64; 3]>,
+    pub weights: Option<Vec<f64>>,
     /// True for a functional surface z = s(x, y).
     pub functional: bool,
 }
 
-/// The number of vertices (control triangles) of a surface.
-pub fn vertex_count(s: &Surface) -> usize {
-    s.general().basis().triangulation().vertex_count()
+/// The number of control points per group (3 for PS kinds, 1 for Bézier ordinates).
+fn group_len(s: &Surface) -> usize {
+    s.control_group(ControlId(0)).len().max(1)
 }
 
-/// The control triangle of vertex `i`.
+/// The ids of group `i`.
+fn group_ids(s: &Surface, i: usize) -> std::ops::Range<usize> {
+    let len = group_len(s);
+    len * i..len * (i + 1)
+}
+
+/// The number of control groups (vertices of a PS surface) of a surface.
+pub fn vertex_count(s: &Surface) -> usize {
+    s.control_count() / group_len(s)
+}
+
+/// The first control point id of group `i`.
+pub fn group_start(s: &Surface, i: usize) -> ControlId {
+    ControlId(group_ids(s, i).start)
+}
+
+/// The control points of group `i`.
+///
+/// # Panics
+/// If there is no group `i`.
 pub fn vertex_control(s: &Surface, i: usize) -> VertexControl {
-    let g = s.general();
+    let points: Vec<ControlPoint> = group_ids(s, i)
+        .map(|id| s.control_point(ControlId(id)).expect("group in range"))
+        .collect();
     VertexControl {
-        points: g.control_triangle(i),
-        weights: match g {
-            PsSurface::Rational(n) => Some(n.weights()[i]),
-            _ => None,
-        },
-        functional: matches!(g, PsSurface::Functional(_)),
+        points: points.iter().map(|p| p.position).collect(),
+        weights: s
+            .is_rational()
+            .then(|| points.iter().map(|p| p.weight).collect()),
+        functional: s.freedom() == ControlFreedom::Height,
     }
 }
 
-/// Replaces the control triangle of vertex `i` (for a functional surface only the heights
-/// are used). Weights must be positive and everything finite.
-pub fn set_vertex_control(s: &mut Surface, i: usize, c: &VertexControl) -> Result<(), String> {
+/// Replaces the control points of group `i` (for a functional surface only the heights are
+/// used). Returns the pieces whose shape changed (the support), or why the library refused
+/// (then nothing changed).
+pub fn set_vertex_control(
+    s: &mut Surface,
+    i: usize,
+    c: &VertexControl,
+) -> Result<Vec<usize>, String> {
     if i >= vertex_count(s) {
         return Err(format!("there is no vertex {i}"));
     }
-    if !c.points.iter().all(|p| p.iter().all(|x| x.is_finite())) {
-        return Err("control points must be finite numbers".into());
+    let ids = group_ids(s, i);
+    if c.points.len() != ids.len() || c.weights.as_ref().is_some_and(|w| w.len() != ids.len()) {
+        return Err(format!("vertex {i} has {} control points", ids.len()));
     }
-    if let Some(w) = c.weights
-        && !w.iter().all(|w| *w > 0.0 && w.is_finite())
-    {
-        return Err("weights must be positive".into());
-    }
-    let heights = c.points.map(|p| p.z);
-    let weights = c.weights.unwrap_or([1.0; 3]);
-    match s {
-        Surface::General(g) => set_general(g, i, c, heights, weights),
-        Surface::Uniform(u, general) => {
-            let slot = u.grid().real_slots()[i];
-            match u {
-                UpsSurface::Functional(f) => f.blocks_mut()[slot] = heights,
-                UpsSurface::Parametric(p) => p.blocks_mut()[slot] = c.points,
-                UpsSurface::Rational(r) => {
-                    r.blocks_mut()[slot] = std::array::from_fn(|j| Weighted {
-                        point: c.points[j],
-                        weight: weights[j],
-                    })
-                }
-            }
-            match general.get_mut() {
-                Some(g) => set_general(g, i, c, heights, weights),
-                None => Ok(()),
-            }
-        }
-    }
-}
-
-fn set_general(
-    g: &mut PsSurface,
-    i: usize,
-    c: &VertexControl,
-    heights: [f64; 3],
-    weights: [f64; 3],
-) -> Result<(), String> {
-    match g {
-        PsSurface::Functional(f) => f.set_coefficients(i, heights),
-        PsSurface::Parametric(p) => p.set_coefficients(i, c.points),
-        PsSurface::Rational(n) => n.set_vertex(i, c.points, weights),
-    }
-    .map_err(|e| e.to_string())
+    let changes: Vec<(ControlId, ControlPoint)> = ids
+        .enumerate()
+        .map(|(k, id)| {
+            (
+                ControlId(id),
+                ControlPoint {
+                    position: c.points[k],
+                    weight: c.weights.as_ref().map_or(1.0, |w| w[k]),
+                },
+            )
+        })
+        .collect();
+    s.set_control_points(&changes).map_err(|e| e.to_string())
 }
 
 #[cfg(test)]
@@ -98,7 +96,7 @@ mod tests {
     #[test]
     fn uniform_edits_keep_both_forms_in_step() {
         for mut s in [crate::demo::wave_patch(3), crate::demo::paraboloid(3)] {
-            let _ = s.general(); // build the cached general form first
+            let _ = s.jet(s.domain_bounds().0); // build the cached general form first
             let n = vertex_count(&s);
             for v in [0, n / 2, n - 1] {
                 let mut c = vertex_control(&s, v);
@@ -136,15 +134,15 @@ mod tests {
     fn bad_control_points_are_rejected_and_leave_the_surface_alone() {
         let mut s = crate::demo::paraboloid(2);
         let before = vertex_control(&s, 3);
-        let mut c = before;
+        let mut c = before.clone();
         c.points[0].x = f64::NAN;
         assert!(
             set_vertex_control(&mut s, 3, &c)
                 .unwrap_err()
                 .contains("finite")
         );
-        let mut c = before;
-        c.weights = Some([1.0, 0.0, 1.0]);
+        let mut c = before.clone();
+        c.weights = Some(vec![1.0, 0.0, 1.0]);
         assert!(
             set_vertex_control(&mut s, 3, &c)
                 .unwrap_err()

@@ -101,7 +101,7 @@ pub fn export_mesh(app: &App, path: &Path, format: MeshFormat) -> Result<(), Str
         .ok_or("select an object to export")?;
     let o = &app.doc.scene.objects[i];
     let level = display_level(o, &app.display);
-    let mut sampled = sample_patches(o.surface.general(), level, true);
+    let mut sampled = sample_patches(&o.surface, level, true);
     let m = o.transform.matrix();
     let rotation = m.fixed_view::<3, 3>(0, 0).into_owned() / o.transform.scale;
     for (p, n) in sampled

@@ -3,6 +3,7 @@
 //! probe panel.
 
 use pssurf::interrogate::CurvatureQuantity;
+use pssurf::surface::PiecewiseSurface;
 use pssurf_viz::colormap::ColorMap;
 use pssurf_viz::plot::Range;
 
@@ -48,8 +49,10 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     let n = edit::vertex_count(&o.surface);
     ui.label(format!(
         "{} surface, {n} vertices, {} triangles",
-        o.surface.kind_name(),
-        o.surface.general().basis().triangulation().triangle_count()
+        o.surface.kind().name(),
+        o.surface
+            .ps_basis()
+            .map_or(o.surface.piece_count(), |b| b.triangulation().triangle_count())
     ));
     egui::Grid::new("transform").num_columns(4).show(ui, |ui| {
         for (row, values, speed) in [
@@ -117,9 +120,9 @@ fn vertex_ui(app: &mut App, ui: &mut egui::Ui, i: usize) {
     }
     let current = edit::vertex_control(surface, v);
     // Keep the user's half-typed values while the same vertex stays selected.
-    let mut c = match app.vertex_edit {
-        Some((oi, vi, c)) if oi == i && vi == v => c,
-        _ => current,
+    let mut c = match &app.vertex_edit {
+        Some((oi, vi, c)) if *oi == i && *vi == v => c.clone(),
+        _ => current.clone(),
     };
     ui.label(format!("vertex {v}"));
     let mut changed = false;
@@ -137,7 +140,7 @@ fn vertex_ui(app: &mut App, ui: &mut egui::Ui, i: usize) {
                 ui.strong(h);
             }
             ui.end_row();
-            for j in 0..3 {
+            for j in 0..c.points.len() {
                 ui.label(format!("Q{}", j + 1));
                 for k in 0..3 {
                     let enabled = !c.functional || k == 2;
@@ -169,7 +172,7 @@ fn vertex_ui(app: &mut App, ui: &mut egui::Ui, i: usize) {
         ui.weak("A functional surface: only the heights of its control points can change.");
     }
     if changed && c != current {
-        match app.set_vertex(i, v, c) {
+        match app.set_vertex(i, v, c.clone()) {
             Ok(()) => app.vertex_edit = None,
             Err(e) => {
                 app.status = e;

@@ -81,7 +81,7 @@ fn object_row(app: &App, ui: &mut egui::Ui, i: usize, actions: &mut Actions) {
             actions.toggle = vec![i];
         }
         let selected = app.selection.object == Some(i);
-        let label = format!("{} ({})", o.name, o.surface.kind_name());
+        let label = format!("{} ({})", o.name, o.surface.kind().name());
         if ui
             .selectable_label(selected, label)
             .on_hover_text("Select")

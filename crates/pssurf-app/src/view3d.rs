@@ -201,7 +201,7 @@ pub fn probe(app: &mut App, rect: Rect, pos: Pos2) {
 }
 
 /// The control points of the selected vertex in scene coordinates.
-fn control_points(app: &App) -> Option<(usize, usize, [Vector3<f64>; 3])> {
+fn control_points(app: &App) -> Option<(usize, usize, Vec<Vector3<f64>>)> {
     let i = app.selection.object?;
     let v = app.selection.vertex?;
     let o = app.doc.scene.objects.get(i)?;
@@ -213,7 +213,10 @@ fn control_points(app: &App) -> Option<(usize, usize, [Vector3<f64>; 3])> {
     Some((
         i,
         v,
-        c.points.map(|p| m.transform_point(&Point3::from(p)).coords),
+        c.points
+            .iter()
+            .map(|p| m.transform_point(&Point3::from(*p)).coords)
+            .collect::<Vec<_>>(),
     ))
 }
 
@@ -281,8 +284,9 @@ pub fn drag_point(
     let mut world = per_pixel * (d.x as f64 * right - d.y as f64 * up);
     let t = o.transform;
     let m = t.matrix();
-    if along_normal && !c.functional {
-        let [a, b, e] = c.points.map(|p| m.transform_point(&Point3::from(p)).coords);
+    if along_normal && !c.functional && c.points.len() == 3 {
+        let [a, b, e] =
+            std::array::from_fn(|j| m.transform_point(&Point3::from(c.points[j])).coords);
         if let Some(n) = (b - a).cross(&(e - a)).try_normalize(1e-300) {
             // The normal's image in the view plane; moving by s·n moves the point on the
             // screen by s·|n_view|.

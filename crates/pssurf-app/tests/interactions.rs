@@ -43,8 +43,8 @@ fn vertex_on_screen(h: &Harness<'_, App>, v: usize) -> Pos2 {
     let app = h.state();
     let tri = app.doc.scene.objects[app.selection.object.unwrap()]
         .surface
-        .general()
-        .basis()
+        .ps_basis()
+        .unwrap()
         .triangulation()
         .clone();
     let (lo, hi) = tri.bounds();
@@ -52,7 +52,7 @@ fn vertex_on_screen(h: &Harness<'_, App>, v: usize) -> Pos2 {
 }
 
 fn z_at(app: &App, object: usize, uv: Point2<f64>) -> f64 {
-    let s = app.doc.scene.objects[object].surface.general();
+    let s = &app.doc.scene.objects[object].surface;
     s.jet_with(uv, &mut s.cursor_near(uv)).unwrap().jet.value.z
 }
 
@@ -80,8 +80,8 @@ fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
     let before = vertex_control(&h.state().doc.scene.objects[0].surface, v);
     let uv = h.state().doc.scene.objects[0]
         .surface
-        .general()
-        .basis()
+        .ps_basis()
+        .unwrap()
         .triangulation()
         .vertex(v);
     let z_before = z_at(h.state(), 0, uv);
@@ -389,7 +389,7 @@ fn a_shift_drag_moves_a_control_point_along_the_surface_normal() {
     let rect = egui::Rect::from_min_size(Pos2::ZERO, vec2(900.0, 600.0));
     let v = 9;
     let before = vertex_control(&app.doc.scene.objects[1].surface, v);
-    let [a, b, c] = before.points;
+    let [a, b, c] = [before.points[0], before.points[1], before.points[2]];
     let normal = (b - a).cross(&(c - a)).normalize();
     pssurf_app::view3d::drag_point(&mut app, rect, (1, v, 2), vec2(4.0, -25.0), true);
     let after = vertex_control(&app.doc.scene.objects[1].surface, v);
@@ -422,8 +422,8 @@ fn the_new_quadric_dialog_adds_an_exact_hyperbolic_paraboloid_that_undo_removes(
     assert_eq!(app.selection.object, Some(2));
     let o = &app.doc.scene.objects[2];
     assert!(o.name.starts_with("hyperbolic paraboloid"), "{}", o.name);
-    let s = o.surface.general();
-    let tri = s.basis().triangulation();
+    let s = &o.surface;
+    let tri = s.ps_basis().unwrap().triangulation();
     for t in (0..tri.triangle_count()).step_by(5) {
         let v = tri.triangle(t);
         let c: Point2<f64> =
@@ -538,8 +538,8 @@ fn the_export_dialog_writes_the_selected_mesh_in_scene_placement() {
         .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
     let (dlo, dhi) = app.doc.scene.objects[1]
         .surface
-        .general()
-        .basis()
+        .ps_basis()
+        .unwrap()
         .triangulation()
         .bounds();
     assert!(

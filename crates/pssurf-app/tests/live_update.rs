@@ -3,6 +3,7 @@
 
 use egui_kittest::wgpu::{create_render_state, default_wgpu_setup};
 use pssurf::interrogate::{CurvatureQuantity, vertices_per_piece};
+use pssurf::surface::PieceKind;
 use pssurf_app::App;
 use pssurf_app::display::ViewMode;
 use pssurf_app::edit::vertex_control;
@@ -46,11 +47,19 @@ fn a_drag_rewrites_only_the_molecule_and_equals_a_full_rebuild() {
     let update = &g.history[0];
     assert_eq!(update.from, before.generation);
     // Exactly the pieces of the molecule: 6 per triangle.
-    let surface = app.doc.scene.objects[1].surface.general();
-    let molecule = surface.basis().triangulation().molecule(vertex).len();
+    let surface = &app.doc.scene.objects[1].surface;
+    let molecule = surface
+        .ps_basis()
+        .unwrap()
+        .triangulation()
+        .molecule(vertex)
+        .len();
     let level = pssurf_app::display::display_level(&app.doc.scene.objects[1], &app.display);
     let rewritten: usize = update.vertices.iter().map(|r| r.len()).sum();
-    assert_eq!(rewritten, 6 * molecule * vertices_per_piece(level));
+    assert_eq!(
+        rewritten,
+        6 * molecule * vertices_per_piece(PieceKind::Triangle, level)
+    );
     // Outside those ranges nothing changed; inside, something did.
     let inside = |k: usize| update.vertices.iter().any(|r| r.contains(&k));
     let mut moved = 0;
@@ -88,7 +97,7 @@ fn a_rejected_drag_changes_nothing() {
     let mut app = app();
     let before = app.cache.geometry.clone();
     let mut c = vertex_control(&app.doc.scene.objects[1].surface, 2);
-    c.weights = Some([1.0, 0.0, 1.0]);
+    c.weights = Some(vec![1.0, 0.0, 1.0]);
     assert!(app.drag_vertex(1, 2, c).is_err());
     assert_eq!(app.cache.geometry.generation, before.generation);
     assert!(app.cache.geometry.history.is_empty());

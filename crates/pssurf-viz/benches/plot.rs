@@ -6,7 +6,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{Point2, Vector3};
 use pssurf::interrogate::{CurvatureQuantity, sample_patches};
 use pssurf::ps::Hermite;
-use pssurf::surface::PatchwiseSurface;
+use pssurf::surface::PiecewiseSurface;
 use pssurf::ups::{Lattice, LatticePolygon, Ups, UpsGrid};
 use pssurf_viz::plot::plot_sampled;
 use pssurf_viz::{PlotOptions, Show};
@@ -29,9 +29,9 @@ fn plot(c: &mut Criterion) {
         dy: Vector3::new(0.0, 1.0, -3.0 * (4.0 * p.x).sin() * (3.0 * p.y).sin()),
     });
     let surface = ups.to_ps().unwrap();
-    let surface = pssurf::surface::PsSurface::Parametric(surface);
+    let surface = pssurf::surface::Surface::Parametric(surface);
     let level = 3;
-    let triangles = (surface.patch_count() << (2 * level)) as u64;
+    let triangles = (surface.piece_count() << (2 * level)) as u64;
     let opts = PlotOptions {
         show: Show::Quantity(CurvatureQuantity::Mean),
         width: 1600,

@@ -4,8 +4,10 @@
 
 use nalgebra::Point2;
 use pssurf::interrogate::{CurvatureQuantity, sample_patches};
+use pssurf::ps::PsBasis;
 use pssurf::ps::ps_triangles::ps_points;
-use pssurf::surface::PsSurface;
+use pssurf::surface::{ParametricSurface, PiecewiseSurface, Surface};
+use pssurf::triangulation::Triangulation;
 use svg::Document;
 use svg::node::element::path::Data;
 use svg::node::element::{
@@ -68,6 +70,12 @@ struct Frame {
     hi_y: f64,
     scale: f64,
     margin: f64,
+    /// The width of the drawing area.
+    inner: f64,
+    /// The width kept for the legend.
+    legend_w: f64,
+    /// The picture's height.
+    height: f64,
 }
 
 impl Frame {
@@ -79,45 +87,23 @@ impl Frame {
     }
 }
 
-/// The domain picture of a surface as an SVG document.
-pub fn domain_svg(surface: &PsSurface, opts: &DomainOptions) -> String {
-    let basis = surface.basis();
-    let tri = basis.triangulation();
-    let (lo, hi) = tri.bounds();
-    // PS-triangles may reach outside the domain: include them in the frame.
-    let (mut lo, mut hi) = (lo, hi);
-    if opts.ps_triangles {
-        for t in basis.ps_triangles() {
-            for v in t.v {
-                lo = lo.inf(&v);
-                hi = hi.sup(&v);
-            }
-        }
-    }
-    let legend_w = if opts.color.is_some() { 150.0 } else { 0.0 };
-    let margin = 20.0;
-    let span = (hi - lo).max().max(1e-300);
-    let inner = (opts.width - 2.0 * margin - legend_w).max(50.0);
-    let scale = inner / (hi.x - lo.x).max(span * 1e-3);
-    let frame = Frame {
-        lo,
-        hi_y: hi.y,
-        scale,
-        margin,
-    };
-    let height = 2.0 * margin + (hi.y - lo.y) * scale;
-    let stroke = (1.2 * inner / 800.0).clamp(0.5, 2.0);
+/// The domain picture of a surface as an SVG document. The triangulation, refinement,
+/// PS-triangles, PS-points and labels are drawn for the PS kinds; other kinds show their
+/// pieces' outlines (and the colour cells).
+pub fn domain_svg(surface: &Surface, opts: &DomainOptions) -> String {
+    let basis = surface.ps_basis();
+    let frame = picture_frame(surface, basis.map(|b| b.ps_triangles()), opts);
+    let stroke = (1.2 * frame.inner / 800.0).clamp(0.5, 2.0);
     let mut doc = Document::new()
-        .set("viewBox", (0, 0, opts.width, height.max(200.0)))
+        .set("viewBox", (0, 0, opts.width, frame.height))
         .set("width", opts.width)
-        .set("height", height.max(200.0))
+        .set("height", frame.height)
         .add(
             Rect::new()
                 .set("width", "100%")
                 .set("height", "100%")
                 .set("fill", "white"),
         );
-
     if let Some(q) = opts.color {
         let (group, scale) = colored_cells(surface, q, opts, &frame);
         doc = doc.add(group);
@@ -126,115 +112,192 @@ pub fn domain_svg(surface: &PsSurface, opts: &DomainOptions) -> String {
             q,
             &opts.colormap,
             &scale,
-            opts.width - legend_w + 10.0,
-            margin,
-            height.max(200.0) - 2.0 * margin,
+            opts.width - frame.legend_w + 10.0,
+            frame.margin,
+            frame.height - 2.0 * frame.margin,
         );
     }
-    if opts.refinement {
-        let r = basis.refinement();
-        let mut data = Data::new();
-        for t in 0..tri.triangle_count() {
-            let z = frame.map(r.z(t));
-            let v = tri.triangle(t);
-            for c in 0..3 {
-                for end in [tri.vertex(v[c]), r.edge_point(tri, t, c)] {
-                    data = data.move_to(z).line_to(frame.map(end));
-                }
+    match basis {
+        Some(basis) => {
+            if opts.refinement {
+                doc = doc.add(refinement_layer(basis, &frame, stroke));
+            }
+            if opts.triangulation {
+                doc = doc.add(triangulation_layer(basis.triangulation(), &frame, stroke));
+            }
+            if opts.ps_triangles {
+                doc = doc.add(ps_triangle_layer(basis, &frame, stroke));
+            }
+            if opts.ps_points {
+                doc = doc.add(ps_point_layer(basis, &frame, stroke));
+            }
+            if opts.vertex_labels {
+                doc = doc.add(label_layer(basis.triangulation(), &frame, stroke));
             }
         }
-        doc = doc.add(
-            Path::new()
-                .set("d", data)
-                .set("fill", "none")
-                .set("stroke", "#3050c0")
-                .set("stroke-width", 0.6 * stroke)
-                .set(
-                    "stroke-dasharray",
-                    format!("{} {}", 3.0 * stroke, 2.0 * stroke),
-                ),
-        );
-    }
-    if opts.triangulation {
-        let mut data = Data::new();
-        for t in 0..tri.triangle_count() {
-            for i in 0..3 {
-                let (a, b) = tri.edge_vertices(t, i);
-                if tri.is_boundary_edge(t, i) || a < b {
-                    data = data
-                        .move_to(frame.map(tri.vertex(a)))
-                        .line_to(frame.map(tri.vertex(b)));
-                }
-            }
-        }
-        doc = doc.add(
-            Path::new()
-                .set("d", data)
-                .set("fill", "none")
-                .set("stroke", "black")
-                .set("stroke-width", stroke),
-        );
-    }
-    if opts.ps_triangles {
-        let mut g = Group::new()
-            .set("fill", "none")
-            .set("stroke", "#d06000")
-            .set("stroke-width", 0.7 * stroke);
-        for t in basis.ps_triangles() {
-            let pts: Vec<String> =
-                t.v.iter()
-                    .map(|&v| {
-                        let (x, y) = frame.map(v);
-                        format!("{x:.3},{y:.3}")
-                    })
-                    .collect();
-            g = g.add(Polygon::new().set("points", pts.join(" ")));
-        }
-        doc = doc.add(g);
-    }
-    if opts.ps_points {
-        let mut g = Group::new().set("fill", "#008040");
-        for i in 0..tri.vertex_count() {
-            for p in ps_points(tri, basis.refinement(), i) {
-                let (x, y) = frame.map(p);
-                g = g.add(
-                    Circle::new()
-                        .set("cx", x)
-                        .set("cy", y)
-                        .set("r", 1.6 * stroke),
-                );
-            }
-        }
-        doc = doc.add(g);
-    }
-    if opts.vertex_labels {
-        let mut g = Group::new()
-            .set("font-family", "monospace")
-            .set("font-size", 10.0 * stroke)
-            .set("fill", "#800000");
-        for i in 0..tri.vertex_count() {
-            let (x, y) = frame.map(tri.vertex(i));
-            g = g.add(
-                Text::new(i.to_string())
-                    .set("x", x + 2.0 * stroke)
-                    .set("y", y - 2.0 * stroke),
-            );
-        }
-        doc = doc.add(g);
+        None if opts.triangulation => doc = doc.add(piece_layer(surface, &frame, stroke)),
+        None => {}
     }
     doc.to_string()
 }
 
+/// Scales the domain (and PS-triangles, which may reach outside it, when shown) into the
+/// picture, leaving room for a legend.
+fn picture_frame(
+    surface: &Surface,
+    ps_triangles: Option<&[pssurf::geometry::Triangle2]>,
+    opts: &DomainOptions,
+) -> Frame {
+    let (mut lo, mut hi) = surface.domain_bounds();
+    if opts.ps_triangles {
+        for v in ps_triangles.unwrap_or(&[]).iter().flat_map(|t| t.v) {
+            lo = lo.inf(&v);
+            hi = hi.sup(&v);
+        }
+    }
+    let legend_w = if opts.color.is_some() { 150.0 } else { 0.0 };
+    let margin = 20.0;
+    let span = (hi - lo).max().max(1e-300);
+    let inner = (opts.width - 2.0 * margin - legend_w).max(50.0);
+    let scale = inner / (hi.x - lo.x).max(span * 1e-3);
+    Frame {
+        lo,
+        hi_y: hi.y,
+        scale,
+        margin,
+        inner,
+        legend_w,
+        height: (2.0 * margin + (hi.y - lo.y) * scale).max(200.0),
+    }
+}
+
+/// The split lines of Δ*, dashed.
+fn refinement_layer(basis: &PsBasis, frame: &Frame, stroke: f64) -> Path {
+    let (tri, r) = (basis.triangulation(), basis.refinement());
+    let mut data = Data::new();
+    for t in 0..tri.triangle_count() {
+        let z = frame.map(r.z(t));
+        let v = tri.triangle(t);
+        for c in 0..3 {
+            for end in [tri.vertex(v[c]), r.edge_point(tri, t, c)] {
+                data = data.move_to(z).line_to(frame.map(end));
+            }
+        }
+    }
+    Path::new()
+        .set("d", data)
+        .set("fill", "none")
+        .set("stroke", "#3050c0")
+        .set("stroke-width", 0.6 * stroke)
+        .set(
+            "stroke-dasharray",
+            format!("{} {}", 3.0 * stroke, 2.0 * stroke),
+        )
+}
+
+/// The edges of Δ, each once.
+fn triangulation_layer(tri: &Triangulation, frame: &Frame, stroke: f64) -> Path {
+    let mut data = Data::new();
+    for t in 0..tri.triangle_count() {
+        for i in 0..3 {
+            let (a, b) = tri.edge_vertices(t, i);
+            if tri.is_boundary_edge(t, i) || a < b {
+                data = data
+                    .move_to(frame.map(tri.vertex(a)))
+                    .line_to(frame.map(tri.vertex(b)));
+            }
+        }
+    }
+    Path::new()
+        .set("d", data)
+        .set("fill", "none")
+        .set("stroke", "black")
+        .set("stroke-width", stroke)
+}
+
+/// The outlines of every piece (for kinds without a triangulation).
+fn piece_layer(surface: &Surface, frame: &Frame, stroke: f64) -> Group {
+    let mut g = Group::new()
+        .set("fill", "none")
+        .set("stroke", "black")
+        .set("stroke-width", stroke);
+    for k in 0..surface.piece_count() {
+        g = g.add(Polygon::new().set(
+            "points",
+            points_attr(frame, &surface.piece_shape(k).corners()),
+        ));
+    }
+    g
+}
+
+/// The PS-triangles t_i.
+fn ps_triangle_layer(basis: &PsBasis, frame: &Frame, stroke: f64) -> Group {
+    let mut g = Group::new()
+        .set("fill", "none")
+        .set("stroke", "#d06000")
+        .set("stroke-width", 0.7 * stroke);
+    for t in basis.ps_triangles() {
+        g = g.add(Polygon::new().set("points", points_attr(frame, &t.v)));
+    }
+    g
+}
+
+/// The PS-points of every vertex.
+fn ps_point_layer(basis: &PsBasis, frame: &Frame, stroke: f64) -> Group {
+    let tri = basis.triangulation();
+    let mut g = Group::new().set("fill", "#008040");
+    for i in 0..tri.vertex_count() {
+        for p in ps_points(tri, basis.refinement(), i) {
+            let (x, y) = frame.map(p);
+            g = g.add(
+                Circle::new()
+                    .set("cx", x)
+                    .set("cy", y)
+                    .set("r", 1.6 * stroke),
+            );
+        }
+    }
+    g
+}
+
+/// Vertex numbers.
+fn label_layer(tri: &Triangulation, frame: &Frame, stroke: f64) -> Group {
+    let mut g = Group::new()
+        .set("font-family", "monospace")
+        .set("font-size", 10.0 * stroke)
+        .set("fill", "#800000");
+    for i in 0..tri.vertex_count() {
+        let (x, y) = frame.map(tri.vertex(i));
+        g = g.add(
+            Text::new(i.to_string())
+                .set("x", x + 2.0 * stroke)
+                .set("y", y - 2.0 * stroke),
+        );
+    }
+    g
+}
+
+/// An SVG `points` attribute.
+fn points_attr(frame: &Frame, pts: &[Point2<f64>]) -> String {
+    pts.iter()
+        .map(|&v| {
+            let (x, y) = frame.map(v);
+            format!("{x:.3},{y:.3}")
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// Small filled triangles coloured by the quantity, piece by piece.
 fn colored_cells(
-    surface: &PsSurface,
+    surface: &Surface,
     q: CurvatureQuantity,
     opts: &DomainOptions,
     frame: &Frame,
 ) -> (Group, ColorScale) {
     let s = sample_patches(surface, opts.level, true);
     let values = s.quantity(q);
-    let (lo, hi) = surface.basis().triangulation().bounds();
+    let (lo, hi) = surface.domain_bounds();
     let scale = range_scale(opts.range, &opts.colormap, q, &values, (hi - lo).norm());
     let mut g = Group::new().set("stroke-width", 0.3);
     for t in &s.mesh.triangles {

@@ -14,7 +14,7 @@ use std::hint::black_box;
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn curvature(c: &mut Criterion) {
-    let surface = PsSurface::Functional(common::franke_spline(10_000));
+    let surface = Surface::Functional(common::franke_spline(10_000));
     let pts = common::grid(1000, 1000);
     let mut g = c.benchmark_group("curvature_10k_vertices");
     g.sample_size(10);
@@ -69,7 +69,7 @@ fn curvature(c: &mut Criterion) {
         b.iter(|| black_box(pssurf::surface::jets(&surface, &pts)))
     });
     // Level 2: 16 mesh triangles and 15 vertices per PS sub-triangle.
-    let vertices = (surface.patch_count() * 15) as u64;
+    let vertices = (surface.piece_count() * 15) as u64;
     g.throughput(Throughput::Elements(vertices));
     g.bench_function("sampled piece by piece (level 2), all cores", |b| {
         b.iter(|| black_box(sample_patches(&surface, 2, true)))

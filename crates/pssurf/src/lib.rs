@@ -46,7 +46,8 @@ pub mod prelude {
         Hermite, Nurps, PatchId, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule,
     };
     pub use crate::surface::{
-        Cursor, OutsideDomain, ParametricSurface, PatchwiseSurface, PsSurface, Surface, SurfaceJet,
+        ControlId, ControlNet, ControlPoint, Cursor, Domain, OutsideDomain, ParametricSurface,
+        PieceShape, PiecewiseSurface, Surface, SurfaceJet, SurfaceKind, UpsSurface,
     };
     pub use crate::triangulation::{Triangulation, TriangulationError};
     pub use crate::vector::Vector;

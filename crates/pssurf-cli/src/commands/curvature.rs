@@ -33,7 +33,7 @@ pub fn run(args: &CurvatureArgs) -> Result<()> {
     let surface = pssurf::io::load(&args.surface)?;
     let pts = args
         .points
-        .resolve(surface.domain_bounds(), surface.is_functional())?;
+        .resolve(surface.domain_bounds(), surface.kind().is_functional())?;
     let columns: Vec<String> = COLUMNS.map(String::from).to_vec();
     evaluate_table(
         &surface,
@@ -43,7 +43,7 @@ pub fn run(args: &CurvatureArgs) -> Result<()> {
         args.table.output.as_deref(),
         |j, row| {
             row[0..3].copy_from_slice(j.jet.value.as_slice());
-            row[14] = j.patch.map_or(f64::NAN, |p| p.index() as f64);
+            row[14] = j.piece as f64;
             match Curvature::from_jet(&j.jet) {
                 Ok(c) => {
                     row[3..8].copy_from_slice(&[c.gaussian, c.mean, c.k1, c.k2, c.absolute()]);

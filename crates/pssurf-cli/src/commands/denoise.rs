@@ -3,10 +3,8 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
-use pssurf::surface::{Surface, UpsSurface};
-use pssurf::ups::Ups;
+use pssurf::surface::Surface;
 use pssurf::ups::threshold::{LevelStats, Shrink, ThresholdRule};
-use pssurf::vector::Vector;
 
 use super::uniform;
 
@@ -117,20 +115,8 @@ pub fn run(args: &DenoiseArgs) -> Result<()> {
         Mode::Hard => Shrink::Hard,
         Mode::Soft => Shrink::Soft,
     };
-    let names = uniform::coordinate_names(u);
-    let (out, stats): (UpsSurface, Vec<LevelStats>) = match u {
-        UpsSurface::Functional(s) => {
-            let (d, st) = denoise(s, args.levels, &rules, mode)?;
-            (UpsSurface::Functional(d), st)
-        }
-        UpsSurface::Parametric(s) => {
-            let (d, st) = denoise(s, args.levels, &rules, mode)?;
-            (UpsSurface::Parametric(d), st)
-        }
-        UpsSurface::Rational(_) => {
-            bail!("wavelets are defined for polynomial UPS surfaces; this one is rational")
-        }
-    };
+    let names = u.coordinate_names();
+    let (out, stats) = u.denoise(args.levels, |level, _| rules[level], mode)?;
     println!("{}", stats_table(&stats, names, true));
     let removed: usize = stats.iter().map(|s| s.zeroed).sum();
     let total: usize = stats.iter().map(|s| s.count).sum();
@@ -157,17 +143,6 @@ pub fn run(args: &DenoiseArgs) -> Result<()> {
     pssurf::io::save(&Surface::from(out), &args.output)?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
-}
-
-fn denoise<V: Vector + Default>(
-    s: &Ups<V>,
-    levels: u32,
-    rules: &[ThresholdRule],
-    mode: Shrink,
-) -> Result<(Ups<V>, Vec<LevelStats>)> {
-    let mut dec = s.wavelet_transform(levels)?;
-    let stats = dec.threshold(|level, _| rules[level], mode);
-    Ok((dec.reconstruct(), stats))
 }
 
 /// The per-level table (the thesis' table after 4.5.6).

@@ -74,7 +74,7 @@ pub fn run(args: &DomainArgs) -> Result<()> {
         level: args.level,
         width: args.width,
     };
-    let svg = pssurf_viz::domain_svg(surface.general(), &opts);
+    let svg = pssurf_viz::domain_svg(&surface, &opts);
     atomic_write_bytes(&args.output, Durability::Atomic, svg.as_bytes())
         .with_context(|| format!("writing {}", args.output.display()))?;
     eprintln!("wrote {}", args.output.display());

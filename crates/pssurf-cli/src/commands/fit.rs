@@ -135,7 +135,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
         .collect();
     let spline = PsSpline::hermite(basis.clone(), &data)?;
     let t = basis.triangulation();
-    pssurf::io::save(&PsSurface::Functional(spline).into(), &args.output)?;
+    pssurf::io::save(&Surface::from(spline), &args.output)?;
     eprintln!(
         "fitted {} points ({} triangles{}); gradients {method}; wrote {}",
         t.vertex_count(),

@@ -3,8 +3,9 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
+use pssurf::ps::PsBasis;
 use pssurf::ps::ps_triangles::quality;
-use pssurf::surface::PsSurface;
+use pssurf::surface::{ControlNet, PiecewiseSurface, Surface, UpsSurface};
 use serde::Serialize;
 
 /// Arguments of `pssurf info`.
@@ -35,27 +36,40 @@ fn stats(mut v: Vec<f64>) -> Stats {
     }
 }
 
+/// What every kind reports.
 #[derive(Serialize)]
 struct Info {
     file: String,
     valid: bool,
     kind: &'static str,
+    description: &'static str,
+    pieces: usize,
+    domain_min: [f64; 2],
+    domain_max: [f64; 2],
+    domain_area: f64,
+    domain_holes: usize,
+    control_points: usize,
+    control_min: [f64; 3],
+    control_max: [f64; 3],
+    weights: Option<Stats>,
+    #[serde(flatten)]
+    ps: Option<PsInfo>,
+    degree: Option<usize>,
+    uniform: Option<UniformInfo>,
+}
+
+/// The PS structure: triangulation, refinement, PS-triangles.
+#[derive(Serialize)]
+struct PsInfo {
     vertices: usize,
     triangles: usize,
     edges: usize,
     boundary_vertices: usize,
     basis_functions: usize,
     split: String,
-    domain_min: [f64; 2],
-    domain_max: [f64; 2],
-    domain_area: f64,
     molecule_number: Stats,
     ps_triangle_area_ratio: Stats,
     ps_triangle_min_angle_deg: Stats,
-    control_min: [f64; 3],
-    control_max: [f64; 3],
-    weights: Option<Stats>,
-    uniform: Option<UniformInfo>,
 }
 
 #[derive(Serialize)]
@@ -68,28 +82,61 @@ struct UniformInfo {
 
 /// Runs `pssurf info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
-    let file = pssurf::io::load(&args.surface)?;
-    let s = file.general();
-    let basis = s.basis();
+    let s = pssurf::io::load(&args.surface)?;
+    let info = collect(&s, args.surface.display().to_string());
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&info)?);
+    } else {
+        print_table(&info);
+    }
+    Ok(())
+}
+
+fn collect(s: &Surface, file: String) -> Info {
+    let points = s.control_points();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &points {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p.position[d]);
+            hi[d] = hi[d].max(p.position[d]);
+        }
+    }
+    let domain = s.domain();
+    let (dlo, dhi) = domain.bounds();
+    Info {
+        file,
+        valid: true,
+        kind: s.kind().name(),
+        description: s.kind().description(),
+        pieces: s.piece_count(),
+        domain_min: [dlo.x, dlo.y],
+        domain_max: [dhi.x, dhi.y],
+        domain_area: domain.area(),
+        domain_holes: domain.hole_count(),
+        control_points: points.len(),
+        control_min: lo,
+        control_max: hi,
+        weights: s
+            .is_rational()
+            .then(|| stats(points.iter().map(|p| p.weight).collect())),
+        ps: s.ps_basis().map(|b| ps_info(b)),
+        degree: match s {
+            Surface::Bezier(b) => Some(b.degree()),
+            Surface::RationalBezier(b) => Some(b.degree()),
+            _ => None,
+        },
+        uniform: s.uniform().map(uniform_info),
+    }
+}
+
+fn ps_info(basis: &PsBasis) -> PsInfo {
     let t = basis.triangulation();
     let n = t.vertex_count();
     let q: Vec<_> = (0..n)
         .map(|i| quality(t, basis.refinement(), i, basis.ps_triangle(i)))
         .collect();
-    let cps = s.control_points();
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in cps.iter().flatten() {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    let (dlo, dhi) = t.bounds();
-    let info = Info {
-        file: args.surface.display().to_string(),
-        valid: true,
-        kind: s.kind_name(),
+    PsInfo {
         vertices: n,
         triangles: t.triangle_count(),
         edges: t.edge_count(),
@@ -99,64 +146,71 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             Some(r) => format!("{r:?}").to_lowercase(),
             None => "given points".into(),
         },
-        domain_min: [dlo.x, dlo.y],
-        domain_max: [dhi.x, dhi.y],
-        domain_area: t.area(),
         molecule_number: stats((0..n).map(|i| t.molecule_number(i) as f64).collect()),
         ps_triangle_area_ratio: stats(q.iter().map(|q| q.area_ratio).collect()),
         ps_triangle_min_angle_deg: stats(q.iter().map(|q| q.min_angle_deg).collect()),
-        control_min: lo,
-        control_max: hi,
-        weights: match &s {
-            PsSurface::Rational(r) => Some(stats(r.weights().iter().flatten().copied().collect())),
-            _ => None,
-        },
-        uniform: file.uniform().map(|u| {
-            let g = u.grid();
-            UniformInfo {
-                base: g.lattice().base,
-                origin: [g.lattice().origin.x, g.lattice().origin.y],
-                polygon: g.polygon().vertices().to_vec(),
-                wavelet_levels_available: g.coarsening_levels(),
-            }
-        }),
-    };
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&info)?);
-        return Ok(());
     }
+}
+
+fn uniform_info(u: &UpsSurface) -> UniformInfo {
+    let g = u.grid();
+    UniformInfo {
+        base: g.lattice().base,
+        origin: [g.lattice().origin.x, g.lattice().origin.y],
+        polygon: g.polygon().vertices().to_vec(),
+        wavelet_levels_available: g.coarsening_levels(),
+    }
+}
+
+fn print_table(info: &Info) {
     let st = |s: &Stats| format!("min {:.4}, median {:.4}, max {:.4}", s.min, s.median, s.max);
     println!("file                 {}", info.file);
     println!("status               valid (every check passed on loading)");
-    println!("kind                 {}", info.kind);
+    println!("kind                 {} ({})", info.kind, info.description);
+    if let Some(ps) = &info.ps {
+        println!(
+            "vertices             {} ({} on the boundary)",
+            ps.vertices, ps.boundary_vertices
+        );
+        println!(
+            "triangles            {} ({} edges; {} PS sub-triangles)",
+            ps.triangles, ps.edges, info.pieces
+        );
+        println!("basis functions      {}", ps.basis_functions);
+        println!("split points         {}", ps.split);
+    }
+    if let Some(m) = info.degree {
+        println!("degree               {m} (one triangular piece)");
+    }
+    let (dlo, dhi) = (info.domain_min, info.domain_max);
     println!(
-        "vertices             {} ({} on the boundary)",
-        info.vertices, info.boundary_vertices
+        "domain               [{}, {}] × [{}, {}], area {}{}",
+        dlo[0],
+        dhi[0],
+        dlo[1],
+        dhi[1],
+        info.domain_area,
+        match info.domain_holes {
+            0 => String::new(),
+            1 => ", 1 hole".into(),
+            h => format!(", {h} holes"),
+        }
     );
+    if let Some(ps) = &info.ps {
+        println!("molecule numbers     {}", st(&ps.molecule_number));
+        println!(
+            "PS-triangle quality  area / hull of PS-points: {}",
+            st(&ps.ps_triangle_area_ratio)
+        );
+        println!(
+            "                     smallest angle (degrees): {}",
+            st(&ps.ps_triangle_min_angle_deg)
+        );
+    }
+    let (lo, hi) = (info.control_min, info.control_max);
     println!(
-        "triangles            {} ({} edges; {} PS sub-triangles)",
-        info.triangles,
-        info.edges,
-        6 * info.triangles
-    );
-    println!("basis functions      {}", info.basis_functions);
-    println!("split points         {}", info.split);
-    println!(
-        "domain               [{}, {}] × [{}, {}], area {}",
-        dlo.x, dhi.x, dlo.y, dhi.y, info.domain_area
-    );
-    println!("molecule numbers     {}", st(&info.molecule_number));
-    println!(
-        "PS-triangle quality  area / hull of PS-points: {}",
-        st(&info.ps_triangle_area_ratio)
-    );
-    println!(
-        "                     smallest angle (degrees): {}",
-        st(&info.ps_triangle_min_angle_deg)
-    );
-    println!(
-        "control points       x [{}, {}], y [{}, {}], z [{}, {}]",
-        lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
+        "control points       {}: x [{}, {}], y [{}, {}], z [{}, {}]",
+        info.control_points, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
     );
     if let Some(w) = &info.weights {
         println!("weights              {}", st(w));
@@ -179,5 +233,4 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             u.wavelet_levels_available.min(62)
         );
     }
-    Ok(())
 }

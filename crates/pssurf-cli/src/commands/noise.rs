@@ -1,12 +1,9 @@
 //! `pssurf noise`: perturb the control points, for denoising experiments.
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
 use anyhow::{Result, bail};
-use pssurf::noise::{NoiseKind, perturb};
-use pssurf::ps::{Nurps, PsSpline};
-use pssurf::surface::{PsSurface, Surface, UpsSurface};
+use pssurf::noise::NoiseKind;
 
 /// The distribution of the noise.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -48,33 +45,7 @@ pub fn run(args: &NoiseArgs) -> Result<()> {
     };
     let (a, seed) = (args.amplitude, args.seed);
     let file = pssurf::io::load(&args.surface)?;
-    let out: Surface = match &file {
-        Surface::Uniform(u, _) => match u {
-            UpsSurface::Functional(s) => UpsSurface::Functional(s.with_noise(a, kind, seed)).into(),
-            UpsSurface::Parametric(s) => UpsSurface::Parametric(s.with_noise(a, kind, seed)).into(),
-            UpsSurface::Rational(_) => bail!(
-                "noise on rational surfaces is not supported (their weights would be ambiguous)"
-            ),
-        },
-        Surface::General(g) => match g {
-            PsSurface::Functional(s) => {
-                let mut c = s.coefficients().to_vec();
-                perturb(c.iter_mut().flatten(), a, kind, seed);
-                PsSurface::Functional(PsSpline::new(Arc::clone(s.basis()), c)?).into()
-            }
-            PsSurface::Parametric(s) => {
-                let mut c = s.coefficients().to_vec();
-                perturb(c.iter_mut().flatten(), a, kind, seed);
-                PsSurface::Parametric(PsSpline::new(Arc::clone(s.basis()), c)?).into()
-            }
-            PsSurface::Rational(s) => {
-                let mut c = s.points().to_vec();
-                perturb(c.iter_mut().flatten(), a, kind, seed);
-                PsSurface::Rational(Nurps::new(Arc::clone(s.basis()), c, s.weights().to_vec())?)
-                    .into()
-            }
-        },
-    };
+    let out = file.with_noise(a, kind, seed);
     pssurf::io::save(&out, &args.output)?;
     let name = match args.distribution {
         Distribution::Uniform => "uniform",

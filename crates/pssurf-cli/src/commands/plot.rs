@@ -6,7 +6,7 @@ use std::str::FromStr;
 use anyhow::{Context, Result, bail};
 use pssurf::interrogate::CurvatureQuantity;
 use pssurf::io::{Durability, atomic_write};
-use pssurf::surface::{PatchwiseSurface, Surface};
+use pssurf::surface::{PiecewiseSurface, Surface};
 use pssurf_viz::plot::Bands;
 use pssurf_viz::{Camera, Overlays, PlotOptions, Projection, Shading, Show};
 
@@ -178,7 +178,7 @@ pub enum ShadingArg {
 
 /// The smallest level at which the surface has at least `target` mesh triangles, at most 5.
 pub fn auto_level(surface: &Surface, target: usize) -> u32 {
-    let pieces = surface.patch_count().max(1);
+    let pieces = surface.piece_count().max(1);
     (0..=5).find(|&l| pieces << (2 * l) >= target).unwrap_or(5)
 }
 
@@ -201,7 +201,7 @@ pub fn options(args: &PlotArgs, surface: &Surface) -> Result<PlotOptions> {
         Some(f) => bail!("--perspective wants a field of view between 0 and 170 degrees (got {f})"),
     };
     let level = args.level.unwrap_or_else(|| auto_level(surface, 200_000));
-    let triangles = (surface.patch_count() as u64) << (2 * level as u64);
+    let triangles = (surface.piece_count() as u64) << (2 * level as u64);
     if triangles > 1 << 27 {
         bail!("level {level} would draw {triangles} triangles; choose a lower --level");
     }
@@ -243,7 +243,7 @@ pub fn options(args: &PlotArgs, surface: &Surface) -> Result<PlotOptions> {
 pub fn run(args: &PlotArgs) -> Result<()> {
     let surface = pssurf::io::load(&args.surface)?;
     let opts = options(args, &surface)?;
-    let picture = pssurf_viz::plot(surface.general(), &opts);
+    let picture = pssurf_viz::plot(&surface, &opts);
     write_png(&picture, &args.output)?;
     eprintln!(
         "drew {} triangles (level {}) at {}x{}; wrote {}",

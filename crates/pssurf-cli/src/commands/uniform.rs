@@ -15,11 +15,3 @@ pub fn require<'a>(surface: &'a Surface, path: &Path, command: &str) -> Result<&
         ),
     }
 }
-
-/// The names of the coordinates of a kind's control values.
-pub fn coordinate_names(u: &UpsSurface) -> &'static [&'static str] {
-    match u {
-        UpsSurface::Functional(_) => &["z"],
-        _ => &["x", "y", "z"],
-    }
-}

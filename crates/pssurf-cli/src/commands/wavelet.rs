@@ -2,10 +2,8 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
-use pssurf::surface::{Surface, UpsSurface};
-use pssurf::ups::wavelet::Decomposition;
-use pssurf::vector::Vector;
+use anyhow::Result;
+use pssurf::surface::{Surface, UpsDecomposition};
 use serde_json::json;
 
 use super::denoise::stats_table;
@@ -30,18 +28,7 @@ pub struct WaveletArgs {
 pub fn run(args: &WaveletArgs) -> Result<()> {
     let file = pssurf::io::load(&args.surface)?;
     let u = uniform::require(&file, &args.surface, "wavelet")?;
-    let names = uniform::coordinate_names(u);
-    let json = match u {
-        UpsSurface::Functional(s) => report(&s.wavelet_transform(args.levels)?, names, |c| {
-            UpsSurface::Functional(c)
-        }),
-        UpsSurface::Parametric(s) => report(&s.wavelet_transform(args.levels)?, names, |c| {
-            UpsSurface::Parametric(c)
-        }),
-        UpsSurface::Rational(_) => {
-            bail!("wavelets are defined for polynomial UPS surfaces; this one is rational")
-        }
-    };
+    let json = report(&u.wavelet_transform(args.levels)?, u.coordinate_names());
     if let Some(path) = &args.output {
         let text = serde_json::to_string(&json)? + "\n";
         pssurf::io::atomic_write_bytes(path, pssurf::io::Durability::Atomic, text.as_bytes())?;
@@ -51,15 +38,11 @@ pub fn run(args: &WaveletArgs) -> Result<()> {
 }
 
 /// Prints the spectrum and histograms; returns the decomposition as JSON.
-fn report<V: Vector + Default>(
-    dec: &Decomposition<V>,
-    names: &[&str],
-    wrap: impl Fn(pssurf::ups::Ups<V>) -> UpsSurface,
-) -> serde_json::Value {
+fn report(dec: &UpsDecomposition, names: &[&str]) -> serde_json::Value {
     let spectrum = dec.spectrum();
     println!(
         "UPS wavelet spectrum, {} levels (level 1 is the coarsest)",
-        dec.levels.len()
+        dec.levels()
     );
     println!("{}", stats_table(&spectrum, names, false));
     println!();
@@ -87,30 +70,22 @@ fn report<V: Vector + Default>(
             bars.join("|")
         );
     }
-    let coarse_text = pssurf::io::to_json_string(&Surface::from(wrap(dec.coarse.clone())));
+    let coarse_text = pssurf::io::to_json_string(&Surface::from(dec.coarse()));
     let coarse: serde_json::Value = serde_json::from_str(&coarse_text).expect("our own JSON");
-    let details: Vec<serde_json::Value> = dec
-        .levels
-        .iter()
-        .enumerate()
-        .map(|(k, l)| {
-            let coeffs: Vec<serde_json::Value> = l
-                .detail_slots()
-                .map(|s| {
-                    let d: Vec<Vec<f64>> = l.details[s]
-                        .iter()
-                        .map(|v| (0..V::DIM).map(|i| v.coord(i)).collect())
-                        .collect();
-                    json!({ "ij": l.grid.lattice_point(s), "d": d })
-                })
+    let details: Vec<serde_json::Value> = (0..dec.levels())
+        .map(|k| {
+            let coeffs: Vec<serde_json::Value> = dec
+                .detail_rows(k)
+                .into_iter()
+                .map(|row| json!({ "ij": row.ij, "d": row.d }))
                 .collect();
-            json!({ "level": k + 1, "base": l.grid.lattice().base, "coefficients": coeffs })
+            json!({ "level": k + 1, "base": dec.level_base(k), "coefficients": coeffs })
         })
         .collect();
     json!({
         "format": "pssurf-wavelet",
         "version": 1,
-        "levels": dec.levels.len(),
+        "levels": dec.levels(),
         "coarse": coarse,
         "details": details,
     })

@@ -6,12 +6,12 @@ use std::sync::Arc;
 use nalgebra::Point2;
 use pssurf::interrogate::{CurvatureQuantity, sample_patches};
 use pssurf::ps::{Hermite, PsBasis, PsSpline};
-use pssurf::surface::PsSurface;
+use pssurf::surface::Surface;
 use pssurf::triangulation::Triangulation;
 
 use super::*;
 
-fn surface() -> PsSurface {
+fn surface() -> Surface {
     let pts: Vec<Point2<f64>> = (0..25)
         .map(|k| {
             Point2::new(
@@ -21,7 +21,7 @@ fn surface() -> PsSurface {
         })
         .collect();
     let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
-    PsSurface::Functional(
+    Surface::Functional(
         PsSpline::interpolate(basis, |p| Hermite {
             value: (2.0 * p.x).sin() * p.y + 0.3 * p.x * p.x,
             dx: 2.0 * (2.0 * p.x).cos() * p.y + 0.6 * p.x,

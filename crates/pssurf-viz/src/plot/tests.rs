@@ -12,7 +12,7 @@ use pssurf::triangulation::Triangulation;
 
 use super::*;
 
-fn grid_surface(f: impl Fn(Point2<f64>) -> Hermite<f64>) -> PsSurface {
+fn grid_surface(f: impl Fn(Point2<f64>) -> Hermite<f64>) -> Surface {
     let pts: Vec<Point2<f64>> = (0..36)
         .map(|k| {
             Point2::new(
@@ -22,7 +22,7 @@ fn grid_surface(f: impl Fn(Point2<f64>) -> Hermite<f64>) -> PsSurface {
         })
         .collect();
     let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
-    PsSurface::Functional(PsSpline::interpolate(basis, f).unwrap())
+    Surface::Functional(PsSpline::interpolate(basis, f).unwrap())
 }
 
 /// A rational quadratic patch on the sphere of radius `r` (inverse stereographic projection).
@@ -86,7 +86,7 @@ fn surface_colors(p: &Picture, right: usize) -> std::collections::HashSet<[u8; 3
 
 #[test]
 fn constant_curvature_gives_one_colour() {
-    let sphere = sphere_patch(2.0);
+    let sphere = Surface::from(sphere_patch(2.0));
     for q in [
         CurvatureQuantity::Gaussian,
         CurvatureQuantity::Mean,
@@ -94,7 +94,7 @@ fn constant_curvature_gives_one_colour() {
     ] {
         let mut o = opts(Show::Quantity(q));
         o.range = Range::Fixed(-1.0, 1.0);
-        let p = plot_patchwise(&sphere, &o);
+        let p = plot(&sphere, &o);
         let colors = surface_colors(&p, p.width - 120);
         // K = 1/4 and H = κ = −1/2 everywhere: one colour, the map's colour there.
         let value = match q {

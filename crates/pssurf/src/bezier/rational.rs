@@ -91,6 +91,20 @@ impl<V: Vector> RationalBezierTriangle<V> {
         })
     }
 
+    /// Replaces ordinate `i` and its weight.
+    ///
+    /// # Panics
+    /// If `i` is out of range, the point not finite or the weight not finite and positive.
+    pub fn set_weighted_ordinate(&mut self, i: usize, point: V, weight: f64) {
+        assert!(point.is_finite(), "ordinates must be finite");
+        assert!(
+            weight > 0.0 && weight.is_finite(),
+            "weights must be positive"
+        );
+        self.points[i] = point;
+        self.weights[i] = weight;
+    }
+
     /// The polynomial patch as a rational one with all weights 1.
     pub fn from_polynomial(p: &BezierTriangle<V>) -> Self {
         RationalBezierTriangle {

@@ -4,8 +4,7 @@
 use rayon::prelude::*;
 
 use super::curvature::{Curvature, CurvatureQuantity};
-use crate::quadrature::TriangleRule;
-use crate::surface::PatchwiseSurface;
+use crate::surface::{PieceRule, PiecewiseSurface};
 
 /// The default polynomial degree for which the per-piece quadrature is exact.
 ///
@@ -14,7 +13,8 @@ use crate::surface::PatchwiseSurface;
 /// 10 correct digits on surfaces whose pieces are not much more curved than they are large.
 pub const DEFAULT_QUADRATURE_DEGREE: usize = 12;
 
-/// Integrals over the surface, by Gauss quadrature on every piece (PS sub-triangle).
+/// Integrals over the surface, by Gauss quadrature on every piece (a PS sub-triangle, a
+/// Bézier triangle, a rectangle of a tensor-product surface).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "io", derive(serde::Serialize))]
 pub struct FairnessIntegrals {
@@ -75,9 +75,9 @@ struct Node {
 
 /// The fairness numbers of `surface`, with a per-piece quadrature rule exact for polynomials
 /// of total degree `degree` (see [`DEFAULT_QUADRATURE_DEGREE`]).
-pub fn fairness<S: PatchwiseSurface + ?Sized>(surface: &S, degree: usize) -> Fairness {
-    let rule = TriangleRule::exact_for(degree);
-    let per_patch: Vec<(FairnessIntegrals, Vec<Node>, usize)> = (0..surface.patch_count())
+pub fn fairness<S: PiecewiseSurface + ?Sized>(surface: &S, degree: usize) -> Fairness {
+    let rule = PieceRule::exact_for(degree);
+    let per_patch: Vec<(FairnessIntegrals, Vec<Node>, usize)> = (0..surface.piece_count())
         .into_par_iter()
         .map(|k| integrate_patch(surface, k, &rule))
         .collect();
@@ -113,23 +113,20 @@ pub fn fairness<S: PatchwiseSurface + ?Sized>(surface: &S, degree: usize) -> Fai
     }
 }
 
-fn integrate_patch<S: PatchwiseSurface + ?Sized>(
+fn integrate_patch<S: PiecewiseSurface + ?Sized>(
     surface: &S,
     k: usize,
-    rule: &TriangleRule,
+    rule: &PieceRule,
 ) -> (FairnessIntegrals, Vec<Node>, usize) {
-    let dom = surface.patch_domain(k);
-    let map = dom
-        .bary_map()
+    let quadrature = surface
+        .piece_quadrature(k, rule)
         .expect("pieces of a valid surface are non-degenerate");
-    let param_area = dom.area();
     let mut out = FairnessIntegrals::default();
-    let mut nodes = Vec::with_capacity(rule.nodes.len());
+    let mut nodes = Vec::with_capacity(quadrature.len());
     let mut singular = 0;
-    for &(bary, w) in &rule.nodes {
-        let uv = dom.point(bary);
-        let j = surface.patch_jet(k, uv, bary, &map);
-        let w_param = w * param_area;
+    for q in &quadrature {
+        let j = surface.piece_jet(k, &q.point);
+        let w_param = q.weight;
         out.thin_plate +=
             w_param * (j.dxx.norm_squared() + 2.0 * j.dxy.norm_squared() + j.dyy.norm_squared());
         let Ok(c) = Curvature::from_jet(&j) else {

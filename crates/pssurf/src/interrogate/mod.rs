@@ -2,8 +2,8 @@
 //! piece by piece, and fairness numbers.
 //!
 //! Everything is written against [`crate::surface::ParametricSurface`] (a point's jet) and
-//! [`crate::surface::PatchwiseSurface`] (the smooth pieces), so PS, UPS, NURPS surfaces and
-//! Bézier triangles are interrogated by the same code.
+//! [`crate::surface::PiecewiseSurface`] (the smooth pieces), so every kind of
+//! [`crate::surface::Surface`] is interrogated by the same code.
 
 pub mod curvature;
 pub mod fairness;
@@ -19,5 +19,7 @@ pub use curvature::{
 pub use fairness::{
     DEFAULT_QUADRATURE_DEGREE, Fairness, FairnessIntegrals, QuantityStats, fairness,
 };
-pub use sample::{SampledSurface, sample_patches, sample_pieces, vertices_per_piece};
+pub use sample::{
+    SampledSurface, sample_patches, sample_pieces, triangles_per_piece, vertices_per_piece,
+};
 pub use section::{SectionCurve, SectionError, SectionOptions, plane_section};

@@ -6,13 +6,13 @@ use rayon::prelude::*;
 
 use super::curvature::{CurvatureQuantity, FundamentalForms, PrincipalCurvatures};
 use crate::mesh::TriMesh;
-use crate::surface::PatchwiseSurface;
+use crate::surface::{PieceFrame, PieceKind, PiecewiseSurface};
 
 /// A surface sampled piece by piece.
 ///
-/// Each piece (a PS sub-triangle) is split into 4^level triangles by a regular grid of
-/// n = 2^level steps per side, so the mesh has (n + 1)(n + 2)/2 vertices and n² triangles per
-/// piece. Vertices on the edges between pieces appear once per piece, each with its own
+/// Each piece is covered by a regular grid of n = 2^level steps per side: a triangular piece
+/// (a PS sub-triangle) gets (n + 1)(n + 2)/2 vertices and n² triangles, a rectangular piece
+/// (n + 1)² vertices and 2n² triangles. Vertices on the edges between pieces appear once per piece, each with its own
 /// piece's curvature: a C¹ PS surface has continuous points and normals there, but its
 /// curvature jumps, and the plots must show it.
 #[derive(Clone, Debug, Default)]
@@ -33,34 +33,53 @@ fn steps(level: u32) -> usize {
     1usize << level
 }
 
+/// The vertex count of one piece of shape `kind` sampled at `level`.
+pub fn vertices_per_piece(kind: PieceKind, level: u32) -> usize {
+    let n = steps(level);
+    match kind {
+        PieceKind::Triangle => (n + 1) * (n + 2) / 2,
+        PieceKind::Rectangle => (n + 1) * (n + 1),
+    }
+}
+
+/// The triangle count of one piece of shape `kind` sampled at `level`.
+pub fn triangles_per_piece(kind: PieceKind, level: u32) -> usize {
+    let n = steps(level);
+    match kind {
+        PieceKind::Triangle => n * n,
+        PieceKind::Rectangle => 2 * n * n,
+    }
+}
+
 /// Sample `surface` at `level` (see [`SampledSurface`]), with curvature when asked. Runs in
 /// parallel over the pieces.
 ///
 /// # Panics
 /// If the mesh would have more than 2³² vertices (level too high for the surface).
-pub fn sample_patches<S: PatchwiseSurface + ?Sized>(
+pub fn sample_patches<S: PiecewiseSurface + ?Sized>(
     surface: &S,
     level: u32,
     with_curvature: bool,
 ) -> SampledSurface {
-    sample_with(surface, level, with_curvature, surface.patch_count(), |j| j)
+    sample_with(surface, level, with_curvature, surface.piece_count(), |j| j)
 }
 
 /// Samples only the listed pieces, in that order, exactly as [`sample_patches`] samples them:
-/// slot j of the result (its vertices `j·m .. (j+1)·m` with m = (n + 1)(n + 2)/2, its
-/// triangles `j·n² .. (j+1)·n²`, indices relative to the result) is piece `pieces[j]`. After
-/// a local change of a spline (one vertex's control triangle changes only the pieces of its
-/// molecule) this re-tessellates just the pieces that changed.
+/// slot j of the result (its vertices `j·m .. (j+1)·m` with m = [`vertices_per_piece`], its
+/// triangles `j·t .. (j+1)·t` with t = [`triangles_per_piece`], indices relative to the
+/// result) is piece `pieces[j]`. After an edit of control points (which changes only the
+/// pieces of their support, [`crate::surface::ControlNet::support`]) this re-tessellates just
+/// the pieces that changed.
 ///
 /// # Panics
 /// If a piece index is out of range, or as [`sample_patches`].
-pub fn sample_pieces<S: PatchwiseSurface + ?Sized>(
+pub fn sample_pieces<S: PiecewiseSurface + ?Sized>(
     surface: &S,
     level: u32,
     with_curvature: bool,
     pieces: &[usize],
 ) -> SampledSurface {
-    let count = surface.patch_count();
+    let count = surface.piece_count();
     assert!(
         pieces.iter().all(|&k| k < count),
         "piece index out of range ({count} pieces)"
@@ -68,14 +87,8 @@ pub fn sample_pieces<S: PatchwiseSurface + ?Sized>(
     sample_with(surface, level, with_curvature, pieces.len(), |j| pieces[j])
 }
 
-/// The vertex count of one piece sampled at `level`.
-pub fn vertices_per_piece(level: u32) -> usize {
-    let n = steps(level);
-    (n + 1) * (n + 2) / 2
-}
-
 /// Samples `slots` pieces, slot j being piece `piece(j)`.
-fn sample_with<S: PatchwiseSurface + ?Sized>(
+fn sample_with<S: PiecewiseSurface + ?Sized>(
     surface: &S,
     level: u32,
     with_curvature: bool,
@@ -83,8 +96,9 @@ fn sample_with<S: PatchwiseSurface + ?Sized>(
     piece: impl Fn(usize) -> usize + Sync,
 ) -> SampledSurface {
     let n = steps(level);
-    let per_vertex = vertices_per_piece(level);
-    let per_triangle = n * n;
+    let kind = surface.piece_kind();
+    let per_vertex = vertices_per_piece(kind, level);
+    let per_triangle = triangles_per_piece(kind, level);
     let total = slots * per_vertex;
     assert!(
         total <= u32::MAX as usize,
@@ -105,7 +119,10 @@ fn sample_with<S: PatchwiseSurface + ?Sized>(
             Vec::new()
         },
     };
-    let local = grid_triangles(n);
+    let local = match kind {
+        PieceKind::Triangle => grid_triangles(n),
+        PieceKind::Rectangle => rectangle_triangles(n),
+    };
     // One optional curvature slice per slot, so that both cases share one parallel loop.
     let curvature: Vec<Option<&mut [PrincipalCurvatures]>> = if with_curvature {
         out.curvature.chunks_mut(per_vertex).map(Some).collect()
@@ -148,7 +165,7 @@ struct PatchChunk<'a> {
 }
 
 /// Evaluates piece `k` on its grid of `n` steps per side; its first vertex has index `base`.
-fn fill_patch<S: PatchwiseSurface + ?Sized>(
+fn fill_patch<S: PiecewiseSurface + ?Sized>(
     surface: &S,
     k: usize,
     n: usize,
@@ -156,31 +173,44 @@ fn fill_patch<S: PatchwiseSurface + ?Sized>(
     base: u32,
     mut out: PatchChunk<'_>,
 ) {
-    let dom = surface.patch_domain(k);
-    let map = dom
-        .bary_map()
+    let frame = surface
+        .piece_shape(k)
+        .frame()
         .expect("pieces of a valid surface are non-degenerate");
     let inv = 1.0 / n as f64;
     let mut v = 0;
-    for j in 0..=n {
-        for i in 0..=n - j {
-            let bary = [(n - i - j) as f64 * inv, i as f64 * inv, j as f64 * inv];
-            let uv = dom.point(bary);
-            let jet = surface.patch_jet(k, uv, bary, &map);
-            out.positions[v] = jet.value;
-            out.uvs[v] = uv;
-            out.patch[v] = k as u32;
-            if let Some(curv) = out.curvature.as_deref_mut() {
-                (curv[v], out.normals[v]) = PrincipalCurvatures::from_jet(&jet)
-                    .unwrap_or((PrincipalCurvatures::UNDEFINED, Vector3::zeros()));
-            } else {
-                out.normals[v] =
-                    FundamentalForms::from_jet(&jet).map_or(Vector3::zeros(), |f| f.normal);
-            }
-            v += 1;
+    let mut put = |at: crate::surface::PiecePoint| {
+        let jet = surface.piece_jet(k, &at);
+        out.positions[v] = jet.value;
+        out.uvs[v] = at.uv;
+        out.patch[v] = k as u32;
+        if let Some(curv) = out.curvature.as_deref_mut() {
+            (curv[v], out.normals[v]) = PrincipalCurvatures::from_jet(&jet)
+                .unwrap_or((PrincipalCurvatures::UNDEFINED, Vector3::zeros()));
+        } else {
+            out.normals[v] =
+                FundamentalForms::from_jet(&jet).map_or(Vector3::zeros(), |f| f.normal);
         }
-    }
-    let flip = dom.det() < 0.0;
+        v += 1;
+    };
+    let flip = match frame {
+        PieceFrame::Triangle { triangle, .. } => {
+            for j in 0..=n {
+                for i in 0..=n - j {
+                    put(frame.at_bary([(n - i - j) as f64 * inv, i as f64 * inv, j as f64 * inv]));
+                }
+            }
+            triangle.det() < 0.0
+        }
+        PieceFrame::Rectangle { .. } => {
+            for j in 0..=n {
+                for i in 0..=n {
+                    put(frame.at_st(i as f64 * inv, j as f64 * inv));
+                }
+            }
+            false
+        }
+    };
     for (t, l) in out.triangles.iter_mut().zip(local) {
         *t = if flip {
             [base + l[0], base + l[2], base + l[1]]
@@ -203,6 +233,20 @@ fn grid_triangles(n: usize) -> Vec<[u32; 3]> {
             if i + 1 < n - j {
                 out.push([b, r1 + i as u32 + 1, c]);
             }
+        }
+    }
+    out
+}
+
+/// The triangles of the regular (n + 1) × (n + 1) grid on the unit square (rows of constant
+/// j, i increasing), two per cell, counter-clockwise in (i, j).
+fn rectangle_triangles(n: usize) -> Vec<[u32; 3]> {
+    let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut out = Vec::with_capacity(2 * n * n);
+    for j in 0..n {
+        for i in 0..n {
+            out.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            out.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
         }
     }
     out

@@ -199,12 +199,12 @@ mod tests {
 
     use super::*;
     use crate::ps::{Hermite, PsBasis, PsSpline};
-    use crate::surface::PsSurface;
+    use crate::surface::Surface;
     use crate::test_util::*;
     use crate::triangulation::Triangulation;
 
     /// The paraboloid z = (x² + y²)/2 on [-1, 1]² (PS-splines reproduce quadratics exactly).
-    fn paraboloid(seed: u64) -> PsSurface {
+    fn paraboloid(seed: u64) -> Surface {
         let mut r = rng(seed);
         let mut pts = vec![
             Point2::new(-1.0, -1.0),
@@ -216,7 +216,7 @@ mod tests {
             (0..60).map(|_| Point2::new(uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0))),
         );
         let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
-        PsSurface::Functional(
+        Surface::Functional(
             PsSpline::interpolate(basis, |p| Hermite {
                 value: 0.5 * (p.x * p.x + p.y * p.y),
                 dx: p.x,

@@ -11,7 +11,9 @@ use crate::bezier::index::multi_indices;
 use crate::bezier::{BezierTriangle, Jet, RationalBezierTriangle};
 use crate::geometry::Triangle2;
 use crate::ps::{Hermite, PsBasis, PsSpline};
-use crate::surface::{ParametricSurface, PatchwiseSurface, PsSurface};
+use crate::surface::{
+    ControlId, ControlNet, ControlPoint, ParametricSurface, PieceKind, PiecewiseSurface, Surface,
+};
 use crate::test_util::*;
 use crate::triangulation::Triangulation;
 
@@ -94,7 +96,7 @@ fn graphs_of_quadratics_have_the_closed_form_curvature_on_every_mesh() {
         let basis = Arc::new(PsBasis::optimal(tri).unwrap());
         for _ in 0..3 {
             let q = Quadratic::random(&mut r);
-            let s = PsSurface::Functional(
+            let s = Surface::Functional(
                 PsSpline::interpolate(basis.clone(), |p| q.hermite(p)).unwrap(),
             );
             let t = basis.triangulation();
@@ -109,7 +111,9 @@ fn graphs_of_quadratics_have_the_closed_form_curvature_on_every_mesh() {
                 // the squared height h of the sub-triangle, so rounding is of order ε/h²
                 // (measured: below 8 ε/h² on every mesh). Well-shaped pieces meet 1e-10;
                 // hull slivers of random Delaunay meshes (h ≈ 4e-4) need ε/h² more.
-                let piece = s.patch_domain(jet.patch.unwrap().index());
+                let crate::surface::PieceShape::Triangle(piece) = s.piece_shape(jet.piece) else {
+                    unreachable!("PS pieces are triangles")
+                };
                 let height = 2.0 * piece.area() / piece.diameter();
                 let tol = 1e-10f64.max(32.0 * f64::EPSILON / (height * height));
                 assert_near!(c.gaussian, k_, tol, "{name} at {p:?}");
@@ -445,11 +449,11 @@ fn quantity_names_round_trip() {
 }
 
 /// A PS surface interpolating a non-polynomial function on a small Delaunay mesh.
-fn wavy_surface(seed: u64) -> PsSurface {
+fn wavy_surface(seed: u64) -> Surface {
     let mut r = rng(seed);
     let tri = meshes::uniform_square(&mut r, 30);
     let basis = Arc::new(PsBasis::optimal(tri).unwrap());
-    PsSurface::Functional(
+    Surface::Functional(
         PsSpline::interpolate(basis, |p| Hermite {
             value: (3.0 * p.x).sin() * (2.0 * p.y).cos(),
             dx: 3.0 * (3.0 * p.x).cos() * (2.0 * p.y).cos(),
@@ -465,7 +469,7 @@ fn sampling_gives_surface_points_and_each_pieces_own_curvature() {
     for level in [0, 2] {
         let sampled = sample_patches(&s, level, true);
         let n = 1usize << level;
-        let pieces = s.patch_count();
+        let pieces = s.piece_count();
         assert_eq!(sampled.mesh.positions.len(), pieces * (n + 1) * (n + 2) / 2);
         assert_eq!(sampled.mesh.triangles.len(), pieces * n * n);
         for v in (0..sampled.mesh.positions.len()).step_by(7) {
@@ -475,8 +479,8 @@ fn sampling_gives_surface_points_and_each_pieces_own_curvature() {
             assert!((sampled.mesh.normals[v] - s.normal(uv).unwrap().unwrap()).norm() < 1e-12);
             // The curvature is that of the vertex's own piece.
             let k = sampled.patch[v] as usize;
-            let dom = s.patch_domain(k);
-            let own = s.patch_jet(k, uv, dom.bary(uv), &dom.bary_map().unwrap());
+            let frame = s.piece_shape(k).frame().unwrap();
+            let own = s.piece_jet(k, &frame.at_uv(uv));
             let c = Curvature::from_jet(&own).unwrap();
             assert_near!(sampled.curvature[v].gaussian, c.gaussian, 1e-11);
         }
@@ -514,22 +518,33 @@ fn sampling_gives_surface_points_and_each_pieces_own_curvature() {
 fn a_local_edit_changes_only_the_molecule_pieces_and_sample_pieces_resamples_them() {
     let mut s = wavy_surface(411);
     let level = 1;
-    let per = vertices_per_piece(level);
+    let per = vertices_per_piece(PieceKind::Triangle, level);
     let before = sample_patches(&s, level, true);
-    let PsSurface::Functional(f) = &mut s else {
-        unreachable!()
-    };
     let vertex = 17;
-    let c = f.coefficients()[vertex];
-    f.set_coefficients(vertex, [c[0] + 0.3, c[1] - 0.2, c[2] + 0.1])
-        .unwrap();
-    let molecule: Vec<usize> = f
-        .basis()
-        .triangulation()
-        .molecule(vertex)
+    let changes: Vec<(ControlId, ControlPoint)> = [0.3, -0.2, 0.1]
         .iter()
-        .flat_map(|&t| (0..6).map(move |sub| 6 * t as usize + sub))
+        .enumerate()
+        .map(|(j, dz)| {
+            let id = ControlId(3 * vertex + j);
+            let mut p = s.control_point(id).unwrap();
+            p.position.z += dz;
+            (id, p)
+        })
         .collect();
+    let molecule = s.set_control_points(&changes).unwrap();
+    let expected: Vec<usize> = {
+        let mut m: Vec<usize> = s
+            .ps_basis()
+            .unwrap()
+            .triangulation()
+            .molecule(vertex)
+            .iter()
+            .flat_map(|&t| (0..6).map(move |sub| 6 * t as usize + sub))
+            .collect();
+        m.sort_unstable();
+        m
+    };
+    assert_eq!(molecule, expected, "the support is the vertex's molecule");
     let after = sample_patches(&s, level, true);
     let local = sample_pieces(&s, level, true, &molecule);
     assert_eq!(local.mesh.positions.len(), molecule.len() * per);
@@ -549,7 +564,7 @@ fn a_local_edit_changes_only_the_molecule_pieces_and_sample_pieces_resamples_the
     }
     // Outside the molecule nothing moved (local support, Definition 2.23).
     let mut moved = 0;
-    for k in 0..s.patch_count() {
+    for k in 0..s.piece_count() {
         let inside = molecule.contains(&k);
         for v in k * per..(k + 1) * per {
             let d = (after.mesh.positions[v] - before.mesh.positions[v]).norm();
@@ -579,7 +594,7 @@ fn fairness_integrals_of_a_paraboloid_match_closed_forms() {
     )
     .unwrap();
     let basis = Arc::new(PsBasis::optimal(tri).unwrap());
-    let s = PsSurface::Functional(
+    let s = Surface::Functional(
         PsSpline::interpolate(basis, |p| Hermite {
             value: 0.5 * (p.x * p.x + p.y * p.y),
             dx: p.x,
@@ -623,7 +638,7 @@ fn fairness_of_a_plane_is_zero() {
     let mut r = rng(410);
     let tri = meshes::uniform_square(&mut r, 25);
     let basis = Arc::new(PsBasis::optimal(tri).unwrap());
-    let s = PsSurface::Functional(
+    let s = Surface::Functional(
         PsSpline::interpolate(basis, |p| Hermite {
             value: 0.3 * p.x - 0.2 * p.y + 1.0,
             dx: 0.3,
@@ -632,7 +647,7 @@ fn fairness_of_a_plane_is_zero() {
         .unwrap(),
     );
     let f = fairness(&s, DEFAULT_QUADRATURE_DEGREE);
-    let area = s.basis().triangulation().area() * (1.0f64 + 0.09 + 0.04).sqrt();
+    let area = s.ps_basis().unwrap().triangulation().area() * (1.0f64 + 0.09 + 0.04).sqrt();
     assert_near!(f.integrals.area, area, 1e-12);
     for v in [
         f.integrals.mean_squared,

@@ -7,10 +7,11 @@ use nalgebra::{Point2, Vector3};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+use crate::bezier::{BezierTriangle, RationalBezierTriangle};
 use crate::geometry::Triangle2;
 use crate::ps::net::Weighted;
 use crate::ps::{Nurps, PsBasis, PsError, PsRefinement, PsSpline, PsTriangleChoice, SplitRule};
-use crate::surface::{PsSurface, Surface, UpsSurface};
+use crate::surface::{Surface, UpsSurface};
 use crate::triangulation::{Triangulation, TriangulationError};
 use crate::ups::{Lattice, LatticePolygon, Ups, UpsGrid, fixed_ps_triangle};
 
@@ -77,16 +78,30 @@ struct Header {
 }
 
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 enum Kind {
     Functional,
     Parametric,
     Nurps,
+    Bezier,
+    RationalBezier,
+}
+
+impl Kind {
+    fn name(self) -> &'static str {
+        match self {
+            Kind::Functional => "functional",
+            Kind::Parametric => "parametric",
+            Kind::Nurps => "nurps",
+            Kind::Bezier => "bezier",
+            Kind::RationalBezier => "rational_bezier",
+        }
+    }
 }
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Domain {
+struct DomainSection {
     vertices: Vec<[f64; 2]>,
     triangles: Vec<[usize; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -99,10 +114,22 @@ struct Domain {
 /// polygon's lattice points in block-matrix order (by rows of constant j, then i).
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Uniform {
+struct UniformSection {
     base: f64,
     origin: [f64; 2],
     polygon: Vec<[i64; 2]>,
+}
+
+/// A triangular Bézier patch: its domain triangle, degree, ordinates in storage order
+/// ([`crate::bezier::index`]) and, for a rational patch, one weight per ordinate.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BezierSection {
+    triangle: [[f64; 2]; 3],
+    degree: usize,
+    points: Vec<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    weights: Option<Vec<f64>>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -111,7 +138,8 @@ struct FileV1 {
     format: String,
     version: u64,
     kind: Kind,
-    domain: Domain,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    domain: Option<DomainSection>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     ps_triangles: Option<Vec<[[f64; 2]; 3]>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -121,7 +149,40 @@ struct FileV1 {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     weights: Option<Vec<[f64; 3]>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    uniform: Option<Uniform>,
+    uniform: Option<UniformSection>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    bezier: Option<BezierSection>,
+}
+
+impl FileV1 {
+    /// An empty file of `kind`, to be filled by a writer.
+    fn new(kind: Kind) -> Self {
+        FileV1 {
+            format: FORMAT_NAME.to_string(),
+            version: FORMAT_VERSION as u64,
+            kind,
+            domain: None,
+            ps_triangles: None,
+            control: None,
+            control_points: None,
+            weights: None,
+            uniform: None,
+            bezier: None,
+        }
+    }
+
+    /// The fields present, by name, for the rule that a file holds only its kind's fields.
+    fn present_fields(&self) -> [(&'static str, bool); 7] {
+        [
+            ("domain", self.domain.is_some()),
+            ("ps_triangles", self.ps_triangles.is_some()),
+            ("control", self.control.is_some()),
+            ("control_points", self.control_points.is_some()),
+            ("weights", self.weights.is_some()),
+            ("uniform", self.uniform.is_some()),
+            ("bezier", self.bezier.is_some()),
+        ]
+    }
 }
 
 fn syntax(e: serde_json::Error) -> FormatError {
@@ -160,15 +221,166 @@ pub fn from_json_str(text: &str) -> Result<Surface, FormatError> {
         None => return Err(invalid("version", "missing field `version`")),
     }
     let file: FileV1 = serde_json::from_str(text).map_err(syntax)?;
-    if file.uniform.is_some() {
-        return build_uniform(file).map(Surface::from);
-    }
-    build(file).map(Surface::from)
+    build(file)
 }
 
-fn build(file: FileV1) -> Result<PsSurface, FormatError> {
-    let n = file.domain.vertices.len();
-    for (i, v) in file.domain.vertices.iter().enumerate() {
+/// The one builder: check which fields the kind allows, read the structure (a general basis,
+/// a uniform grid, or a Bézier triangle), read and check the control data against it, and
+/// assemble the surface.
+fn build(file: FileV1) -> Result<Surface, FormatError> {
+    check_fields(&file)?;
+    match file.kind {
+        Kind::Bezier | Kind::RationalBezier => build_bezier(&file),
+        _ => {
+            let structure = match &file.uniform {
+                Some(u) => Structure::Uniform(read_uniform(u, &file)?),
+                None => Structure::General(read_basis(&file)?),
+            };
+            let control = read_ps_control(&file, structure.vertex_count())?;
+            structure.surface(control)
+        }
+    }
+}
+
+/// Refuses fields that belong to other kinds and reports missing ones.
+fn check_fields(file: &FileV1) -> Result<(), FormatError> {
+    let (required, allowed): (&[&str], &[&str]) = match file.kind {
+        Kind::Functional => (&["domain", "control"], &["ps_triangles", "uniform"]),
+        Kind::Parametric => (&["domain", "control_points"], &["ps_triangles", "uniform"]),
+        Kind::Nurps => (
+            &["domain", "control_points", "weights"],
+            &["ps_triangles", "uniform"],
+        ),
+        Kind::Bezier | Kind::RationalBezier => (&["bezier"], &[]),
+    };
+    for (field, present) in file.present_fields() {
+        if present && !required.contains(&field) && !allowed.contains(&field) {
+            return Err(invalid(
+                field,
+                format!("a {} surface has no field `{field}`", file.kind.name()),
+            ));
+        }
+        if !present && required.contains(&field) {
+            return Err(invalid(
+                field,
+                format!("missing field `{field}` for a {} surface", file.kind.name()),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The structure that control values are attached to.
+enum Structure {
+    General(Arc<PsBasis>),
+    Uniform(UpsGrid),
+}
+
+/// The control data of a PS-type file, checked for count and finiteness.
+enum PsControl {
+    Heights(Vec<[f64; 3]>),
+    Points(Vec<[Vector3<f64>; 3]>),
+    Weighted(Vec<[Vector3<f64>; 3]>, Vec<[f64; 3]>),
+}
+
+impl Structure {
+    fn vertex_count(&self) -> usize {
+        match self {
+            Structure::General(b) => b.triangulation().vertex_count(),
+            Structure::Uniform(g) => g.vertex_count(),
+        }
+    }
+
+    fn surface(self, control: PsControl) -> Result<Surface, FormatError> {
+        Ok(match (self, control) {
+            (Structure::General(b), PsControl::Heights(c)) => {
+                Surface::Functional(PsSpline::new(b, c).map_err(ps_error)?)
+            }
+            (Structure::General(b), PsControl::Points(c)) => {
+                Surface::Parametric(PsSpline::new(b, c).map_err(ps_error)?)
+            }
+            (Structure::General(b), PsControl::Weighted(c, w)) => {
+                Surface::Nurps(Nurps::new(b, c, w).map_err(ps_error)?)
+            }
+            (Structure::Uniform(g), PsControl::Heights(c)) => {
+                UpsSurface::Functional(Ups::from_vertices(g, c).map_err(|e| invalid("control", e))?)
+                    .into()
+            }
+            (Structure::Uniform(g), PsControl::Points(c)) => UpsSurface::Parametric(
+                Ups::from_vertices(g, c).map_err(|e| invalid("control_points", e))?,
+            )
+            .into(),
+            (Structure::Uniform(g), PsControl::Weighted(c, w)) => {
+                UpsSurface::Rational(Ups::rational(g, c, w).map_err(|e| match e {
+                    crate::ups::UpsError::Ps(pe) => ps_error(pe),
+                    e => invalid("weights", e),
+                })?)
+                .into()
+            }
+        })
+    }
+}
+
+/// Reads `control`, `control_points` and `weights` as the kind requires (presence was
+/// checked before), one triple per vertex, all finite, weights positive.
+fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
+    let finite = |field: &str, i: usize, j: usize, ok: bool| {
+        if ok {
+            Ok(())
+        } else {
+            Err(invalid(format!("{field}[{i}][{j}]"), "not a finite number"))
+        }
+    };
+    if file.kind == Kind::Functional {
+        let c = file.control.as_ref().expect("checked by check_fields");
+        check_count("control", c.len(), n)?;
+        for (i, t) in c.iter().enumerate() {
+            for j in 0..3 {
+                finite("control", i, j, t[j].is_finite())?;
+            }
+        }
+        return Ok(PsControl::Heights(c.clone()));
+    }
+    let c = file
+        .control_points
+        .as_ref()
+        .expect("checked by check_fields");
+    check_count("control_points", c.len(), n)?;
+    for (i, t) in c.iter().enumerate() {
+        for j in 0..3 {
+            finite("control_points", i, j, t[j].iter().all(|x| x.is_finite()))?;
+        }
+    }
+    let points: Vec<[Vector3<f64>; 3]> = c
+        .iter()
+        .map(|t| t.map(|p| Vector3::new(p[0], p[1], p[2])))
+        .collect();
+    if file.kind == Kind::Parametric {
+        return Ok(PsControl::Points(points));
+    }
+    let w = file.weights.as_ref().expect("checked by check_fields");
+    check_count("weights", w.len(), n)?;
+    for (i, t) in w.iter().enumerate() {
+        for j in 0..3 {
+            if !(t[j] > 0.0 && t[j].is_finite()) {
+                return Err(invalid(
+                    format!("weights[{i}][{j}]"),
+                    PsError::InvalidWeight {
+                        vertex: i,
+                        index: j,
+                        weight: t[j],
+                    },
+                ));
+            }
+        }
+    }
+    Ok(PsControl::Weighted(points, w.clone()))
+}
+
+/// The general PS basis of a file: triangulation, refinement, PS-triangles.
+fn read_basis(file: &FileV1) -> Result<Arc<PsBasis>, FormatError> {
+    let domain = file.domain.as_ref().expect("checked by check_fields");
+    for (i, v) in domain.vertices.iter().enumerate() {
         if !v.iter().all(|x| x.is_finite()) {
             return Err(invalid(
                 format!("domain.vertices[{i}]"),
@@ -176,24 +388,36 @@ fn build(file: FileV1) -> Result<PsSurface, FormatError> {
             ));
         }
     }
-    let vertices: Vec<Point2<f64>> = file
-        .domain
+    let vertices: Vec<Point2<f64>> = domain
         .vertices
         .iter()
         .map(|v| Point2::new(v[0], v[1]))
         .collect();
-    let tri = Triangulation::try_new(vertices, file.domain.triangles.clone())
-        .map_err(triangulation_error)?;
-    let refinement = match (&file.domain.split, &file.domain.split_points) {
-        (Some(_), Some(_)) => {
-            return Err(invalid(
-                "domain",
-                "give either `split` or `split_points`, not both",
-            ));
-        }
+    let tri =
+        Triangulation::try_new(vertices, domain.triangles.clone()).map_err(triangulation_error)?;
+    let refinement = read_refinement(domain, &tri)?;
+    let choice = match &file.ps_triangles {
+        None => PsTriangleChoice::Optimal,
+        Some(list) => PsTriangleChoice::Given(list.iter().map(|&t| triangle2(t)).collect()),
+    };
+    Ok(Arc::new(
+        PsBasis::with_refinement(tri, refinement, &choice).map_err(ps_error)?,
+    ))
+}
+
+/// The PS refinement from `split` or `split_points`.
+fn read_refinement(
+    domain: &DomainSection,
+    tri: &Triangulation,
+) -> Result<PsRefinement, FormatError> {
+    match (&domain.split, &domain.split_points) {
+        (Some(_), Some(_)) => Err(invalid(
+            "domain",
+            "give either `split` or `split_points`, not both",
+        )),
         (_, Some(points)) => {
             let z = points.iter().map(|p| Point2::new(p[0], p[1])).collect();
-            PsRefinement::with_points(&tri, z)
+            PsRefinement::with_points(tri, z).map_err(ps_error)
         }
         (rule, None) => {
             let rule = match rule.as_deref() {
@@ -206,78 +430,22 @@ fn build(file: FileV1) -> Result<PsSurface, FormatError> {
                     ));
                 }
             };
-            PsRefinement::new(&tri, rule)
+            PsRefinement::new(tri, rule).map_err(ps_error)
         }
     }
-    .map_err(ps_error)?;
-    let choice = match &file.ps_triangles {
-        None => PsTriangleChoice::Optimal,
-        Some(list) => PsTriangleChoice::Given(
-            list.iter()
-                .map(|t| {
-                    Triangle2::new(
-                        Point2::new(t[0][0], t[0][1]),
-                        Point2::new(t[1][0], t[1][1]),
-                        Point2::new(t[2][0], t[2][1]),
-                    )
-                })
-                .collect(),
-        ),
-    };
-    let basis = Arc::new(PsBasis::with_refinement(tri, refinement, &choice).map_err(ps_error)?);
-    let only = |present: bool, field: &str, kinds: &str| {
-        if present {
-            Err(invalid(
-                field,
-                format!("only {kinds} surfaces have `{field}`"),
-            ))
-        } else {
-            Ok(())
-        }
-    };
-    let need = |field: &str| {
-        invalid(
-            field,
-            format!("missing field `{field}` for a {:?} surface", file.kind).to_lowercase(),
-        )
-    };
-    let surface = match file.kind {
-        Kind::Functional => {
-            only(
-                file.control_points.is_some(),
-                "control_points",
-                "parametric and nurps",
-            )?;
-            only(file.weights.is_some(), "weights", "nurps")?;
-            let c = file.control.ok_or_else(|| need("control"))?;
-            check_count("control", c.len(), n)?;
-            PsSurface::Functional(PsSpline::new(basis, c).map_err(ps_error)?)
-        }
-        Kind::Parametric | Kind::Nurps => {
-            only(file.control.is_some(), "control", "functional")?;
-            let c = file.control_points.ok_or_else(|| need("control_points"))?;
-            check_count("control_points", c.len(), n)?;
-            let pts: Vec<[Vector3<f64>; 3]> = c
-                .iter()
-                .map(|t| t.map(|p| Vector3::new(p[0], p[1], p[2])))
-                .collect();
-            if file.kind == Kind::Parametric {
-                only(file.weights.is_some(), "weights", "nurps")?;
-                PsSurface::Parametric(PsSpline::new(basis, pts).map_err(ps_error)?)
-            } else {
-                let w = file.weights.ok_or_else(|| need("weights"))?;
-                check_count("weights", w.len(), n)?;
-                PsSurface::Rational(Nurps::new(basis, pts, w).map_err(ps_error)?)
-            }
-        }
-    };
-    Ok(surface)
 }
 
-/// Rebuilds a UPS surface, checking that the general description is exactly its uniform
-/// triangulation with the fixed PS-triangles.
-fn build_uniform(file: FileV1) -> Result<UpsSurface, FormatError> {
-    let u = file.uniform.as_ref().expect("checked by the caller");
+fn triangle2(t: [[f64; 2]; 3]) -> Triangle2 {
+    Triangle2::new(
+        Point2::new(t[0][0], t[0][1]),
+        Point2::new(t[1][0], t[1][1]),
+        Point2::new(t[2][0], t[2][1]),
+    )
+}
+
+/// The uniform grid of a UPS file, checking that the general description is exactly its
+/// uniform triangulation with the incentre split and the fixed PS-triangles.
+fn read_uniform(u: &UniformSection, file: &FileV1) -> Result<UpsGrid, FormatError> {
     if !(u.base > 0.0 && u.base.is_finite() && u.origin.iter().all(|x| x.is_finite())) {
         return Err(invalid(
             "uniform.base",
@@ -291,11 +459,26 @@ fn build_uniform(file: FileV1) -> Result<UpsSurface, FormatError> {
         origin: Point2::new(u.origin[0], u.origin[1]),
     };
     let grid = UpsGrid::new(lattice, polygon).map_err(|e| invalid("uniform", e))?;
+    let domain = file.domain.as_ref().expect("checked by check_fields");
+    check_uniform_vertices(&grid, domain)?;
+    check_uniform_triangles(&grid, domain)?;
+    check_uniform_split(domain)?;
+    if let Some(list) = &file.ps_triangles {
+        check_uniform_ps_triangles(&grid, list)?;
+    }
+    Ok(grid)
+}
+
+/// The tolerance for lattice coordinates written as decimals.
+fn lattice_tolerance(grid: &UpsGrid) -> f64 {
+    1e-9 * grid.lattice().base
+}
+
+fn check_uniform_vertices(grid: &UpsGrid, domain: &DomainSection) -> Result<(), FormatError> {
     let slots = grid.real_slots();
-    let n = slots.len();
-    check_count("domain.vertices", file.domain.vertices.len(), n)?;
-    let tol = 1e-9 * u.base;
-    for (k, (&s, v)) in slots.iter().zip(&file.domain.vertices).enumerate() {
+    check_count("domain.vertices", domain.vertices.len(), slots.len())?;
+    let (lattice, tol) = (grid.lattice(), lattice_tolerance(grid));
+    for (k, (&s, v)) in slots.iter().zip(&domain.vertices).enumerate() {
         let lp = grid.lattice_point(s);
         let p = lattice.point(lp);
         if !((p.x - v[0]).abs() <= tol && (p.y - v[1]).abs() <= tol) {
@@ -308,12 +491,12 @@ fn build_uniform(file: FileV1) -> Result<UpsSurface, FormatError> {
             ));
         }
     }
-    let mut index = vec![usize::MAX; grid.slots()];
-    for (k, &s) in slots.iter().enumerate() {
-        index[s] = k;
-    }
-    let key = |t: [usize; 3]| {
-        let mut t = t;
+    Ok(())
+}
+
+fn check_uniform_triangles(grid: &UpsGrid, domain: &DomainSection) -> Result<(), FormatError> {
+    let index = vertex_index(grid);
+    let key = |mut t: [usize; 3]| {
         t.sort_unstable();
         t
     };
@@ -322,7 +505,7 @@ fn build_uniform(file: FileV1) -> Result<UpsSurface, FormatError> {
         .into_iter()
         .map(|t| key(t.map(|s| index[s])))
         .collect();
-    let mut given: Vec<[usize; 3]> = file.domain.triangles.iter().map(|&t| key(t)).collect();
+    let mut given: Vec<[usize; 3]> = domain.triangles.iter().map(|&t| key(t)).collect();
     expected.sort_unstable();
     given.sort_unstable();
     if expected != given {
@@ -331,91 +514,103 @@ fn build_uniform(file: FileV1) -> Result<UpsSurface, FormatError> {
             "not the triangles of the uniform triangulation of the polygon",
         ));
     }
-    if file.domain.split_points.is_some()
-        || file
-            .domain
-            .split
-            .as_deref()
-            .is_some_and(|s| s != "incenter")
-    {
+    Ok(())
+}
+
+fn check_uniform_split(domain: &DomainSection) -> Result<(), FormatError> {
+    if domain.split_points.is_some() || domain.split.as_deref().is_some_and(|s| s != "incenter") {
         return Err(invalid(
             "domain.split",
             "uniform surfaces use the incentre split (the angle bisectors, Definition 4.3)",
         ));
     }
-    if let Some(list) = &file.ps_triangles {
-        check_count("ps_triangles", list.len(), n)?;
-        for (k, (t, &s)) in list.iter().zip(&slots).enumerate() {
-            let q = fixed_ps_triangle(&lattice, lattice.point(grid.lattice_point(s)));
-            let same = (0..3)
-                .all(|m| (q.v[m].x - t[m][0]).abs() <= tol && (q.v[m].y - t[m][1]).abs() <= tol);
-            if !same {
-                return Err(invalid(
-                    format!("ps_triangles[{k}]"),
-                    "uniform surfaces use the fixed PS-triangles t(6) (Property 4.1)",
-                ));
-            }
-        }
-    }
-    let finite = |field: &str, vals: &mut dyn Iterator<Item = (usize, usize, bool)>| {
-        for (i, j, ok) in vals {
-            if !ok {
-                return Err(invalid(format!("{field}[{i}][{j}]"), "not a finite number"));
-            }
-        }
-        Ok(())
-    };
-    match file.kind {
-        Kind::Functional => {
-            let c = file
-                .control
-                .ok_or_else(|| invalid("control", "missing field `control`"))?;
-            check_count("control", c.len(), n)?;
-            finite(
-                "control",
-                &mut c
-                    .iter()
-                    .enumerate()
-                    .flat_map(|(i, t)| (0..3).map(move |j| (i, j, t[j].is_finite()))),
-            )?;
-            Ok(UpsSurface::Functional(
-                Ups::from_vertices(grid, c).map_err(|e| invalid("control", e))?,
-            ))
-        }
-        Kind::Parametric | Kind::Nurps => {
-            let c = file
-                .control_points
-                .ok_or_else(|| invalid("control_points", "missing field `control_points`"))?;
-            check_count("control_points", c.len(), n)?;
-            finite(
-                "control_points",
-                &mut c.iter().enumerate().flat_map(|(i, t)| {
-                    (0..3).map(move |j| (i, j, t[j].iter().all(|x| x.is_finite())))
-                }),
-            )?;
-            let pts: Vec<[Vector3<f64>; 3]> = c
-                .iter()
-                .map(|t| t.map(|p| Vector3::new(p[0], p[1], p[2])))
-                .collect();
-            if file.kind == Kind::Parametric {
-                Ok(UpsSurface::Parametric(
-                    Ups::from_vertices(grid, pts).map_err(|e| invalid("control_points", e))?,
-                ))
-            } else {
-                let w = file
-                    .weights
-                    .ok_or_else(|| invalid("weights", "missing field `weights`"))?;
-                check_count("weights", w.len(), n)?;
-                Ok(UpsSurface::Rational(Ups::rational(grid, pts, w).map_err(
-                    |e| match e {
-                        crate::ups::UpsError::Ps(pe) => ps_error(pe),
-                        e => invalid("weights", e),
-                    },
-                )?))
-            }
-        }
-    }
+    Ok(())
 }
+
+fn check_uniform_ps_triangles(grid: &UpsGrid, list: &[[[f64; 2]; 3]]) -> Result<(), FormatError> {
+    let slots = grid.real_slots();
+    check_count("ps_triangles", list.len(), slots.len())?;
+    let (lattice, tol) = (grid.lattice(), lattice_tolerance(grid));
+    for (k, (t, &s)) in list.iter().zip(&slots).enumerate() {
+        let q = fixed_ps_triangle(lattice, lattice.point(grid.lattice_point(s)));
+        let same =
+            (0..3).all(|m| (q.v[m].x - t[m][0]).abs() <= tol && (q.v[m].y - t[m][1]).abs() <= tol);
+        if !same {
+            return Err(invalid(
+                format!("ps_triangles[{k}]"),
+                "uniform surfaces use the fixed PS-triangles t(6) (Property 4.1)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// For each slot of the grid, the index of its real vertex (`usize::MAX` for pseudo-slots).
+fn vertex_index(grid: &UpsGrid) -> Vec<usize> {
+    let mut index = vec![usize::MAX; grid.slots()];
+    for (k, s) in grid.real_slots().into_iter().enumerate() {
+        index[s] = k;
+    }
+    index
+}
+
+/// A Bézier or rational Bézier triangle.
+fn build_bezier(file: &FileV1) -> Result<Surface, FormatError> {
+    let b = file.bezier.as_ref().expect("checked by check_fields");
+    let rational = file.kind == Kind::RationalBezier;
+    match (&b.weights, rational) {
+        (Some(_), false) => {
+            return Err(invalid(
+                "bezier.weights",
+                "a bezier surface has no weights (use the kind \"rational_bezier\")",
+            ));
+        }
+        (None, true) => {
+            return Err(invalid(
+                "bezier.weights",
+                "missing field `weights` for a rational_bezier surface",
+            ));
+        }
+        _ => {}
+    }
+    if !b.triangle.iter().flatten().all(|x| x.is_finite()) {
+        return Err(invalid("bezier.triangle", "coordinates must be finite"));
+    }
+    if b.degree > MAX_BEZIER_DEGREE {
+        return Err(invalid(
+            "bezier.degree",
+            format!("the degree must be at most {MAX_BEZIER_DEGREE}"),
+        ));
+    }
+    let points: Vec<Vector3<f64>> = b
+        .points
+        .iter()
+        .map(|p| Vector3::new(p[0], p[1], p[2]))
+        .collect();
+    let domain = triangle2(b.triangle);
+    let bezier_error = |e: crate::bezier::BezierError| {
+        use crate::bezier::BezierError as E;
+        let at = match &e {
+            E::NonFiniteOrdinate(i) => format!("bezier.points[{i}]"),
+            E::InvalidWeight(i) => format!("bezier.weights[{i}]"),
+            E::DegenerateDomain => "bezier.triangle".to_string(),
+            _ => "bezier".to_string(),
+        };
+        invalid(at, e)
+    };
+    Ok(match &b.weights {
+        None => Surface::Bezier(
+            BezierTriangle::try_new(domain, b.degree, points).map_err(bezier_error)?,
+        ),
+        Some(w) => Surface::RationalBezier(
+            RationalBezierTriangle::try_new(domain, b.degree, points, w.clone())
+                .map_err(bezier_error)?,
+        ),
+    })
+}
+
+/// The highest Bézier degree a file may have (evaluation costs O(m³) per point).
+const MAX_BEZIER_DEGREE: usize = 30;
 
 fn check_count(field: &str, found: usize, n: usize) -> Result<(), FormatError> {
     if found == n {
@@ -466,8 +661,12 @@ fn ps_error(e: PsError) -> FormatError {
 /// surface also gets its `uniform` section.
 pub fn to_json_string(surface: &Surface) -> String {
     let file = match surface {
-        Surface::General(s) => general_file(s),
-        Surface::Uniform(u, _) => uniform_file(u),
+        Surface::Uniform(u) => uniform_file(u.ups()),
+        Surface::Bezier(b) => bezier_file(b.domain(), b.degree(), b.points(), None),
+        Surface::RationalBezier(b) => {
+            bezier_file(b.domain(), b.degree(), b.points(), Some(b.weights()))
+        }
+        general => general_file(general),
     };
     let mut text = serde_json::to_string(&file).expect("finite numbers serialise");
     text.push('\n');
@@ -478,8 +677,20 @@ fn points3(c: &[[Vector3<f64>; 3]]) -> Vec<[[f64; 3]; 3]> {
     c.iter().map(|t| t.map(|p| [p.x, p.y, p.z])).collect()
 }
 
-fn general_file(surface: &PsSurface) -> FileV1 {
-    let basis = surface.basis();
+/// Writes the control values of a PS kind into the file.
+fn put_control(file: &mut FileV1, control: PsControl) {
+    match control {
+        PsControl::Heights(c) => file.control = Some(c),
+        PsControl::Points(p) => file.control_points = Some(points3(&p)),
+        PsControl::Weighted(p, w) => {
+            file.control_points = Some(points3(&p));
+            file.weights = Some(w);
+        }
+    }
+}
+
+fn general_file(surface: &Surface) -> FileV1 {
+    let basis = surface.ps_basis().expect("a PS kind");
     let tri = basis.triangulation();
     let refinement = basis.refinement();
     let (split, split_points) = match refinement.rule() {
@@ -496,44 +707,40 @@ fn general_file(surface: &PsSurface) -> FileV1 {
             ),
         ),
     };
-    let mut file = FileV1 {
-        format: FORMAT_NAME.to_string(),
-        version: FORMAT_VERSION as u64,
-        kind: Kind::Functional,
-        domain: Domain {
-            vertices: tri.vertices().iter().map(|v| [v.x, v.y]).collect(),
-            triangles: tri
-                .triangles()
-                .iter()
-                .map(|t| t.map(|v| v as usize))
-                .collect(),
-            split,
-            split_points,
-        },
-        ps_triangles: Some(
-            basis
-                .ps_triangles()
-                .iter()
-                .map(|t| t.v.map(|p| [p.x, p.y]))
-                .collect(),
+    let (kind, control) = match surface {
+        Surface::Functional(s) => (
+            Kind::Functional,
+            PsControl::Heights(s.coefficients().to_vec()),
         ),
-        control: None,
-        control_points: None,
-        weights: None,
-        uniform: None,
+        Surface::Parametric(s) => (
+            Kind::Parametric,
+            PsControl::Points(s.coefficients().to_vec()),
+        ),
+        Surface::Nurps(s) => (
+            Kind::Nurps,
+            PsControl::Weighted(s.points().to_vec(), s.weights().to_vec()),
+        ),
+        _ => unreachable!("general_file is called for the general PS kinds"),
     };
-    match surface {
-        PsSurface::Functional(s) => file.control = Some(s.coefficients().to_vec()),
-        PsSurface::Parametric(s) => {
-            file.kind = Kind::Parametric;
-            file.control_points = Some(points3(s.coefficients()));
-        }
-        PsSurface::Rational(s) => {
-            file.kind = Kind::Nurps;
-            file.control_points = Some(points3(s.points()));
-            file.weights = Some(s.weights().to_vec());
-        }
-    }
+    let mut file = FileV1::new(kind);
+    file.domain = Some(DomainSection {
+        vertices: tri.vertices().iter().map(|v| [v.x, v.y]).collect(),
+        triangles: tri
+            .triangles()
+            .iter()
+            .map(|t| t.map(|v| v as usize))
+            .collect(),
+        split,
+        split_points,
+    });
+    file.ps_triangles = Some(
+        basis
+            .ps_triangles()
+            .iter()
+            .map(|t| t.v.map(|p| [p.x, p.y]))
+            .collect(),
+    );
+    put_control(&mut file, control);
     file
 }
 
@@ -541,58 +748,68 @@ fn uniform_file(u: &UpsSurface) -> FileV1 {
     let grid = u.grid();
     let lattice = *grid.lattice();
     let slots = grid.real_slots();
-    let mut index = vec![usize::MAX; grid.slots()];
-    for (k, &s) in slots.iter().enumerate() {
-        index[s] = k;
-    }
+    let index = vertex_index(grid);
     let points: Vec<Point2<f64>> = slots
         .iter()
         .map(|&s| lattice.point(grid.lattice_point(s)))
         .collect();
-    let mut file = FileV1 {
-        format: FORMAT_NAME.to_string(),
-        version: FORMAT_VERSION as u64,
-        kind: Kind::Functional,
-        domain: Domain {
-            vertices: points.iter().map(|p| [p.x, p.y]).collect(),
-            triangles: grid
-                .triangle_slots()
-                .into_iter()
-                .map(|t| t.map(|s| index[s]))
-                .collect(),
-            split: Some("incenter".into()),
-            split_points: None,
-        },
-        ps_triangles: Some(
-            points
-                .iter()
-                .map(|&p| fixed_ps_triangle(&lattice, p).v.map(|q| [q.x, q.y]))
-                .collect(),
-        ),
-        control: None,
-        control_points: None,
-        weights: None,
-        uniform: Some(Uniform {
-            base: lattice.base,
-            origin: [lattice.origin.x, lattice.origin.y],
-            polygon: grid.polygon().vertices().to_vec(),
-        }),
-    };
-    match u {
-        UpsSurface::Functional(s) => file.control = Some(s.vertex_values()),
-        UpsSurface::Parametric(s) => {
-            file.kind = Kind::Parametric;
-            file.control_points = Some(points3(&s.vertex_values()));
-        }
+    let (kind, control) = match u {
+        UpsSurface::Functional(s) => (Kind::Functional, PsControl::Heights(s.vertex_values())),
+        UpsSurface::Parametric(s) => (Kind::Parametric, PsControl::Points(s.vertex_values())),
         UpsSurface::Rational(s) => {
             let v: Vec<[Weighted<Vector3<f64>>; 3]> = s.vertex_values();
-            file.kind = Kind::Nurps;
-            file.control_points = Some(points3(
-                &v.iter().map(|t| t.map(|w| w.point)).collect::<Vec<_>>(),
-            ));
-            file.weights = Some(v.iter().map(|t| t.map(|w| w.weight)).collect());
+            (
+                Kind::Nurps,
+                PsControl::Weighted(
+                    v.iter().map(|t| t.map(|w| w.point)).collect(),
+                    v.iter().map(|t| t.map(|w| w.weight)).collect(),
+                ),
+            )
         }
-    }
+    };
+    let mut file = FileV1::new(kind);
+    file.domain = Some(DomainSection {
+        vertices: points.iter().map(|p| [p.x, p.y]).collect(),
+        triangles: grid
+            .triangle_slots()
+            .into_iter()
+            .map(|t| t.map(|s| index[s]))
+            .collect(),
+        split: Some("incenter".into()),
+        split_points: None,
+    });
+    file.ps_triangles = Some(
+        points
+            .iter()
+            .map(|&p| fixed_ps_triangle(&lattice, p).v.map(|q| [q.x, q.y]))
+            .collect(),
+    );
+    file.uniform = Some(UniformSection {
+        base: lattice.base,
+        origin: [lattice.origin.x, lattice.origin.y],
+        polygon: grid.polygon().vertices().to_vec(),
+    });
+    put_control(&mut file, control);
+    file
+}
+
+fn bezier_file(
+    triangle: &Triangle2,
+    degree: usize,
+    points: &[Vector3<f64>],
+    weights: Option<&[f64]>,
+) -> FileV1 {
+    let mut file = FileV1::new(if weights.is_some() {
+        Kind::RationalBezier
+    } else {
+        Kind::Bezier
+    });
+    file.bezier = Some(BezierSection {
+        triangle: triangle.v.map(|p| [p.x, p.y]),
+        degree,
+        points: points.iter().map(|p| [p.x, p.y, p.z]).collect(),
+        weights: weights.map(<[f64]>::to_vec),
+    });
     file
 }
 

@@ -6,7 +6,7 @@ use nalgebra::Point2;
 
 use super::basis::{PsBasis, SubLocation};
 use super::net::{NET_LEN, SUB_ORDINATES, Weighted};
-use super::spline::{PsJet, build_nets};
+use super::spline::{PsJet, build_nets, touched_triangles};
 use super::{PatchId, PsError};
 use crate::bezier::RationalBezierTriangle;
 use crate::bezier::rational::rational_quadratic_jet;
@@ -104,13 +104,29 @@ impl<V: Vector> Nurps<V> {
                 weight: weights[j],
             });
         }
-        self.points[i] = points;
-        self.weights[i] = weights;
-        let ctrl = weighted(&self.points, &self.weights);
-        for &t in self.basis.triangulation().molecule(i) {
-            self.nets[t as usize] = self.basis.net(t as usize, &ctrl);
-        }
+        self.set_vertices(&[(i, points, weights)]);
         Ok(())
+    }
+
+    /// Replaces the control points and weights of several vertices (unchecked: points must
+    /// be finite and weights finite and positive) and rebuilds the nets of the triangles in
+    /// their molecules, each once.
+    pub(crate) fn set_vertices(&mut self, changes: &[(usize, [V; 3], [f64; 3])]) {
+        for &(i, p, w) in changes {
+            self.points[i] = p;
+            self.weights[i] = w;
+        }
+        let touched = touched_triangles(&self.basis, changes.iter().map(|c| c.0));
+        for t in touched {
+            let v = self.basis.triangulation().triangle(t);
+            let ctrl = v.map(|i| {
+                std::array::from_fn(|j| Weighted {
+                    point: self.points[i][j],
+                    weight: self.weights[i][j],
+                })
+            });
+            self.nets[t] = self.basis.stencil(t).apply(ctrl);
+        }
     }
 
     /// The rational quadratic Bézier patch of sub-triangle `sub` of triangle `t`.
@@ -144,17 +160,10 @@ impl<V: Vector> Nurps<V> {
 
     /// s(p) with derivatives up to order two, or an error outside the domain.
     pub fn jet(&self, p: Point2<f64>) -> Result<PsJet<V>, PsError> {
-        let mut hint = self.basis.triangulation().start_triangle(p);
-        self.jet_from(p, &mut hint)
-    }
-
-    /// As [`Nurps::jet`], walking from the triangle in `hint` and updating it.
-    pub fn jet_from(&self, p: Point2<f64>, hint: &mut usize) -> Result<PsJet<V>, PsError> {
         let loc = self
             .basis
-            .locate(p, *hint)
+            .locate_any(p)
             .ok_or(PsError::OutsideDomain { x: p.x, y: p.y })?;
-        *hint = loc.triangle;
         Ok(self.jet_at(&loc))
     }
 

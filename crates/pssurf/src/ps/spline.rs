@@ -11,6 +11,8 @@ use super::net::{NET_LEN, SUB_ORDINATES};
 use super::{PatchId, PsError};
 use crate::bezier::triangle::quadratic_jet;
 use crate::bezier::{BezierTriangle, Jet};
+use crate::surface::for_each_chunk;
+use crate::triangulation::Cursor;
 use crate::vector::Vector;
 
 /// Hermite data at a vertex: the value and the two partial derivatives (2.30).
@@ -124,11 +126,20 @@ impl<V: Vector> PsSpline<V> {
                 index: j,
             });
         }
-        self.coeffs[i] = c;
-        for &t in self.basis.triangulation().molecule(i) {
-            self.nets[t as usize] = self.basis.net(t as usize, &self.coeffs);
-        }
+        self.set_vertices(&[(i, c)]);
         Ok(())
+    }
+
+    /// Replaces the control values of several vertices (unchecked: values must be finite)
+    /// and rebuilds the nets of the triangles in their molecules, each once.
+    pub(crate) fn set_vertices(&mut self, changes: &[(usize, [V; 3])]) {
+        for &(i, c) in changes {
+            self.coeffs[i] = c;
+        }
+        let touched = touched_triangles(&self.basis, changes.iter().map(|c| c.0));
+        for t in touched {
+            self.nets[t] = self.basis.net(t, &self.coeffs);
+        }
     }
 
     /// The 19 Bézier ordinates of triangle `t` (layout in [`super::net`]).
@@ -220,7 +231,7 @@ impl<V: Vector> PsSpline<V> {
     pub fn evaluator(&self) -> Evaluator<'_, V> {
         Evaluator {
             spline: self,
-            hint: 0,
+            cursor: Cursor::default(),
         }
     }
 
@@ -229,7 +240,7 @@ impl<V: Vector> PsSpline<V> {
     pub fn evaluator_near(&self, p: Point2<f64>) -> Evaluator<'_, V> {
         Evaluator {
             spline: self,
-            hint: self.basis.triangulation().start_triangle(p),
+            cursor: Cursor(self.basis.triangulation().start_triangle(p)),
         }
     }
 
@@ -248,15 +259,12 @@ impl<V: Vector> PsSpline<V> {
     ) -> Vec<T> {
         let mut out: Vec<Option<T>> = Vec::with_capacity(points.len());
         out.resize_with(points.len(), || None);
-        points
-            .par_chunks(8192)
-            .zip(out.par_chunks_mut(8192))
-            .for_each(|(pts, res)| {
-                let mut ev = self.evaluator_near(pts[0]);
-                for (r, &p) in res.iter_mut().zip(pts) {
-                    *r = Some(f(&mut ev, p));
-                }
-            });
+        for_each_chunk(points, &mut out, 1, |pts, res| {
+            let mut ev = self.evaluator_near(pts[0]);
+            for (r, &p) in res.iter_mut().zip(pts) {
+                *r = Some(f(&mut ev, p));
+            }
+        });
         out.into_iter()
             .map(|r| r.expect("every point mapped"))
             .collect()
@@ -281,16 +289,16 @@ impl<V: Vector> PsSpline<V> {
 #[derive(Clone, Debug)]
 pub struct Evaluator<'a, V> {
     spline: &'a PsSpline<V>,
-    /// The triangle of the previous point (where the next walk starts).
-    hint: usize,
+    /// Where the previous point was found (the next walk starts there).
+    cursor: Cursor,
 }
 
 impl<V: Vector> Evaluator<'_, V> {
     /// Where `p` lies, or `None` outside the domain.
     #[inline]
     pub fn locate(&mut self, p: Point2<f64>) -> Option<SubLocation> {
-        let loc = self.spline.basis.locate(p, self.hint)?;
-        self.hint = loc.triangle;
+        let loc = self.spline.basis.locate(p, self.cursor.0)?;
+        self.cursor.0 = loc.triangle;
         Some(loc)
     }
 
@@ -311,6 +319,20 @@ impl<V: Vector> Evaluator<'_, V> {
     pub fn jet(&mut self, p: Point2<f64>) -> Option<PsJet<V>> {
         self.locate(p).map(|l| self.spline.jet_at(&l))
     }
+}
+
+/// The triangles of the molecules of `vertices`, each once, in increasing order.
+pub(crate) fn touched_triangles(
+    basis: &PsBasis,
+    vertices: impl Iterator<Item = usize>,
+) -> Vec<usize> {
+    let tri = basis.triangulation();
+    let mut out: Vec<usize> = vertices
+        .flat_map(|i| tri.molecule(i).iter().map(|&t| t as usize))
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
 }
 
 /// The Bézier nets of all triangles for per-vertex control values (in parallel).

@@ -16,6 +16,13 @@ pub const INSIDE_TOLERANCE: f64 = 1e-12;
 /// The most walking steps before giving up and asking the R-tree.
 const MAX_WALK: usize = 64;
 
+/// Remembers where the previous point location ended (the triangle to start the next walk
+/// from), so that nearby points are found by a short walk. Get one near the first point (e.g.
+/// from [`Triangulation::start_triangle`] or `ParametricSurface::cursor_near`) and reuse it
+/// along a grid or a curve; `Cursor::default()` works too (it starts at triangle 0).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Cursor(pub usize);
+
 /// Where a point lies: a triangle and the point's barycentric coordinates in it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Location {

@@ -7,7 +7,7 @@ mod locate;
 mod validate;
 
 pub use error::TriangulationError;
-pub use locate::{INSIDE_TOLERANCE, Location};
+pub use locate::{Cursor, INSIDE_TOLERANCE, Location};
 
 use std::sync::OnceLock;
 

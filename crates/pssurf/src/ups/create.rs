@@ -97,8 +97,8 @@ mod tests {
 
     /// max |s(p) − (x, y, q(x, y))| at a random point of every triangle.
     fn error(s: &Surface, q: impl Fn(f64, f64) -> f64, r: &mut rand_chacha::ChaCha8Rng) -> f64 {
-        let g = s.general();
-        let tri = g.basis().triangulation();
+        let g = s;
+        let tri = g.ps_basis().unwrap().triangulation();
         (0..tri.triangle_count())
             .map(|t| {
                 let v = tri.triangle(t);

@@ -72,6 +72,9 @@ pub enum UpsError {
         /// Possible.
         available: u32,
     },
+    /// The lifting wavelet transform is defined for polynomial UPS surfaces only.
+    #[error("wavelets are defined for polynomial UPS surfaces; this one is rational")]
+    RationalWavelet,
     /// The general triangulation could not be built.
     #[error("{0}")]
     Triangulation(crate::triangulation::TriangulationError),

@@ -6,7 +6,7 @@ use nalgebra::{Point2, Vector3};
 use pssurf::interrogate::{Curvature, DEFAULT_QUADRATURE_DEGREE, FairnessIntegrals, fairness};
 use pssurf::noise::NoiseKind;
 use pssurf::ps::{Hermite, PsBasis, PsSpline};
-use pssurf::surface::{ParametricSurface, PsSurface, Surface, UpsSurface};
+use pssurf::surface::{ParametricSurface, Surface, UpsSurface};
 use pssurf::triangulation::Triangulation;
 use pssurf::ups::threshold::{Shrink, ThresholdRule};
 use pssurf::ups::{Lattice, LatticePolygon, Ups, UpsGrid};
@@ -131,8 +131,8 @@ pub struct Comparison {
 }
 
 /// Random parameter points of a surface's domain (one per triangle piece, seeded).
-pub fn sample_points(s: &PsSurface, n: usize) -> Vec<Point2<f64>> {
-    let tri = s.basis().triangulation();
+pub fn sample_points(s: &Surface, n: usize) -> Vec<Point2<f64>> {
+    let tri = s.ps_basis().expect("a PS surface").triangulation();
     let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(7);
     (0..n)
         .map(|_| {
@@ -173,7 +173,7 @@ pub fn compare(original: &Surface, s: &Surface, points: &[Point2<f64>]) -> Compa
 /// A single PS B-spline basis function (seed 000, Figure 4): the functional PS-spline with
 /// coefficient 1 for basis function B_0^0 of the centre vertex and 0 elsewhere, on a
 /// triangulation of a centre, a ring of 6 and a ring of 12 points.
-pub fn basis_function() -> PsSurface {
+pub fn basis_function() -> Surface {
     let mut pts = vec![Point2::new(0.0, 0.0)];
     for (ring, count) in [(1.0, 6), (2.0, 12)] {
         for k in 0..count {
@@ -195,5 +195,5 @@ pub fn basis_function() -> PsSurface {
         .expect("vertices");
     let mut coeffs = vec![[0.0; 3]; basis.triangulation().vertex_count()];
     coeffs[centre][0] = 1.0;
-    PsSurface::Functional(PsSpline::new(basis, coeffs).expect("finite coefficients"))
+    Surface::Functional(PsSpline::new(basis, coeffs).expect("finite coefficients"))
 }

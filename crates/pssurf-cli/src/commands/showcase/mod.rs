@@ -13,7 +13,7 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use pssurf::interrogate::{CurvatureQuantity, sample_patches};
 use pssurf::io::{Durability, atomic_write_bytes};
-use pssurf::surface::{PatchwiseSurface, PsSurface};
+use pssurf::surface::{PiecewiseSurface, Surface};
 use pssurf_viz::plot::{plot_sampled, range_scale};
 use pssurf_viz::{Camera, ColorMap, ColorScale, DomainOptions, PlotOptions, Range, Show};
 
@@ -54,7 +54,7 @@ pub fn run(args: &ShowcaseArgs) -> Result<()> {
             .expect("a valid template"),
     );
     let original = &variants[0].surface;
-    let points = experiment::sample_points(original.general(), 4000);
+    let points = experiment::sample_points(original, 4000);
     // One colour scale per quantity for all pictures, from the original surface, so that
     // colours mean the same values everywhere: the seed's map with its contrast curve.
     let seed = ColorMap::named("seed")?;
@@ -119,7 +119,7 @@ pub fn run(args: &ShowcaseArgs) -> Result<()> {
     bar.inc(2);
     bar.set_message("domain pictures");
     write_domain(
-        original.general(),
+        original,
         Some(CurvatureQuantity::Mean),
         &args.out.join("domain_original.svg"),
     )?;
@@ -154,9 +154,9 @@ fn fixed(scale: Option<ColorScale>) -> Range {
 }
 
 /// The basis function's pictures: shaded, Gaussian and mean curvature.
-fn basis_pictures(s: &PsSurface, base: &PlotOptions, dir: &Path) -> Result<Vec<String>> {
+fn basis_pictures(s: &Surface, base: &PlotOptions, dir: &Path) -> Result<Vec<String>> {
     let level = (0..=5)
-        .find(|&l| s.patch_count() << (2 * l) >= 100_000)
+        .find(|&l| s.piece_count() << (2 * l) >= 100_000)
         .unwrap_or(5);
     let sampled = sample_patches(s, level, true);
     let mut names = Vec::new();
@@ -181,7 +181,7 @@ fn basis_pictures(s: &PsSurface, base: &PlotOptions, dir: &Path) -> Result<Vec<S
     Ok(names)
 }
 
-fn write_domain(s: &PsSurface, color: Option<CurvatureQuantity>, path: &Path) -> Result<()> {
+fn write_domain(s: &Surface, color: Option<CurvatureQuantity>, path: &Path) -> Result<()> {
     let opts = DomainOptions {
         color,
         ps_points: color.is_none(),
