@@ -81,24 +81,10 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
         .object
         .filter(|&i| i < app.doc.scene.objects.len())
     else {
-        painter.text(
-            rect.center(),
-            egui::Align2::CENTER_CENTER,
-            "no object selected",
-            egui::FontId::proportional(13.0),
-            Color32::GRAY,
-        );
-        return;
+        return centered_message(&painter, rect, "no object selected");
     };
     let Some(basis) = app.doc.scene.objects[i].surface.ps_basis().cloned() else {
-        ui.painter().text(
-            rect.center(),
-            egui::Align2::CENTER_CENTER,
-            "the domain view shows PS surfaces",
-            egui::FontId::proportional(13.0),
-            Color32::GRAY,
-        );
-        return;
+        return centered_message(&painter, rect, "the domain view shows PS surfaces");
     };
     let tri = basis.triangulation();
     let (lo, hi) = tri.bounds();
@@ -184,4 +170,15 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
             None => "no PS-triangle there".into(),
         };
     }
+}
+
+/// A grey message in the middle of the view.
+fn centered_message(painter: &egui::Painter, rect: Rect, text: &str) {
+    painter.text(
+        rect.center(),
+        egui::Align2::CENTER_CENTER,
+        text,
+        egui::FontId::proportional(13.0),
+        Color32::GRAY,
+    );
 }

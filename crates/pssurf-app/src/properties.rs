@@ -50,9 +50,9 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     ui.label(format!(
         "{} surface, {n} vertices, {} triangles",
         o.surface.kind().name(),
-        o.surface
-            .ps_basis()
-            .map_or(o.surface.piece_count(), |b| b.triangulation().triangle_count())
+        o.surface.ps_basis().map_or(o.surface.piece_count(), |b| b
+            .triangulation()
+            .triangle_count())
     ));
     egui::Grid::new("transform").num_columns(4).show(ui, |ui| {
         for (row, values, speed) in [

@@ -352,3 +352,147 @@ fn view_names_a_missing_file_instead_of_starting_the_application() {
         "{err}"
     );
 }
+
+/// q(x, y) = x² − 0.7 xy + 0.5 y² (as a formula for `new ups`) with its curvature.
+const Q_FORMULA: &str = "x^2 - 0.7*x*y + 0.5*y^2";
+
+fn q(x: f64, y: f64) -> f64 {
+    x * x - 0.7 * x * y + 0.5 * y * y
+}
+
+/// Gaussian and mean curvature of the graph of q at (x, y).
+fn q_curvature(x: f64, y: f64) -> (f64, f64) {
+    let (fx, fy, fxx, fxy, fyy) = (2.0 * x - 0.7 * y, -0.7 * x + y, 2.0, -0.7, 1.0);
+    let w2: f64 = 1.0 + fx * fx + fy * fy;
+    let k = (fxx * fyy - fxy * fxy) / (w2 * w2);
+    let h = ((1.0 + fy * fy) * fxx - 2.0 * fx * fy * fxy + (1.0 + fx * fx) * fyy)
+        / (2.0 * w2 * w2.sqrt());
+    (k, h)
+}
+
+/// The graph of q as a file of every kind: UPS (functional, parametric), the same as general
+/// PS surfaces (the `uniform` section removed), NURPS (weights 1), and quadratic Bézier and
+/// rational Bézier triangles written by hand.
+fn every_kind(dir: &Path) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    for kind in ["functional", "parametric"] {
+        let ups = s(&dir.join(format!("ups-{kind}.json")));
+        ok(&[
+            "new", "ups", "--sides", "4", "--size", "3", "--base", "0.3", "--height", Q_FORMULA,
+            "--kind", kind, "-o", &ups,
+        ]);
+        let mut v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&ups).unwrap()).unwrap();
+        v.as_object_mut().unwrap().remove("uniform");
+        let general = write(dir, &format!("{kind}.json"), &v.to_string());
+        files.push((format!("uniform {kind}"), ups));
+        files.push((kind.to_string(), s(&general)));
+        if kind == "parametric" {
+            let n = v["control_points"].as_array().unwrap().len();
+            v["kind"] = "nurps".into();
+            v["weights"] = serde_json::json!(vec![[1.0, 1.0, 1.0]; n]);
+            files.push(("nurps".into(), s(&write(dir, "nurps.json", &v.to_string()))));
+        }
+    }
+    // The quadratic Bézier triangle of the graph over (0, 0), (1, 0.1), (0.2, 0.9): corner
+    // values, and 2 q(mid) − (q(a) + q(b))/2 on the edges.
+    let t = [[0.0, 0.0], [1.0, 0.1], [0.2, 0.9]];
+    let p = |a: [f64; 2]| [a[0], a[1], q(a[0], a[1])];
+    let mid = |i: usize, j: usize| {
+        let m = [(t[i][0] + t[j][0]) / 2.0, (t[i][1] + t[j][1]) / 2.0];
+        let (pm, pi, pj) = (p(m), p(t[i]), p(t[j]));
+        [0, 1, 2].map(|k| 2.0 * pm[k] - (pi[k] + pj[k]) / 2.0)
+    };
+    let points = [p(t[0]), mid(0, 1), mid(0, 2), p(t[1]), mid(1, 2), p(t[2])];
+    let bezier = serde_json::json!({"format": "pssurf", "version": 1, "kind": "bezier",
+        "bezier": {"triangle": t, "degree": 2, "points": points}});
+    files.push((
+        "bezier".into(),
+        s(&write(dir, "bezier.json", &bezier.to_string())),
+    ));
+    let rational = serde_json::json!({"format": "pssurf", "version": 1, "kind": "rational_bezier",
+        "bezier": {"triangle": t, "degree": 2, "points": points, "weights": vec![1.0; 6]}});
+    files.push((
+        "rational_bezier".into(),
+        s(&write(dir, "rational.json", &rational.to_string())),
+    ));
+    files
+}
+
+#[test]
+fn every_kind_goes_through_every_interrogation_command() {
+    let d = tmp();
+    for (name, file) in every_kind(d.path()) {
+        let info: serde_json::Value =
+            serde_json::from_str(&ok(&["info", &file, "--json"])).unwrap();
+        let kind = info["kind"].as_str().unwrap();
+        assert!(name.ends_with(kind), "{name}: {kind}");
+        // Curvature: the closed form wherever the grid point is in the domain.
+        let c = d.path().join(format!("{name}.npy"));
+        ok(&[
+            "curvature",
+            &file,
+            "--grid",
+            "7x7",
+            "--outside",
+            "skip",
+            "-o",
+            &s(&c),
+        ]);
+        let (shape, data) = read_npy(&c);
+        assert!(shape[0] >= 10, "{name}: only {} points inside", shape[0]);
+        for row in data.chunks(shape[1]) {
+            let (x, y) = (row[2], row[3]);
+            assert!((row[4] - q(x, y)).abs() < 1e-12, "{name}: z at {x}, {y}");
+            let (k, h) = q_curvature(x, y);
+            assert!((row[5] - k).abs() < 1e-9, "{name}: K {} vs {k}", row[5]);
+            assert!((row[6] - h).abs() < 1e-9, "{name}: H {} vs {h}", row[6]);
+        }
+        // Fairness: the thin-plate energy of the graph is (4 + 2·0.49 + 1) × the area.
+        let f: serde_json::Value =
+            serde_json::from_str(&ok(&["fairness", &file, "--json"])).unwrap();
+        let area = info["domain_area"].as_f64().unwrap();
+        let tp = f["integrals"]["thin_plate"].as_f64().unwrap();
+        assert!(
+            (tp - 5.98 * area).abs() < 1e-9 * area,
+            "{name}: {tp} vs {area}"
+        );
+        // Pictures and meshes.
+        let png = d.path().join(format!("{name}.png"));
+        ok(&[
+            "plot",
+            &file,
+            "--show",
+            "mean",
+            "--size",
+            "160x120",
+            "-o",
+            &s(&png),
+        ]);
+        assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG", "{name}");
+        let ply = d.path().join(format!("{name}.ply"));
+        ok(&[
+            "export",
+            &file,
+            "--format",
+            "ply",
+            "--fields",
+            "K,H",
+            "-o",
+            &s(&ply),
+        ]);
+        assert!(
+            std::fs::read_to_string(&ply)
+                .unwrap_or_default()
+                .starts_with("ply")
+                || std::fs::read(&ply).unwrap().starts_with(b"ply"),
+            "{name}"
+        );
+        let svg = d.path().join(format!("{name}.svg"));
+        ok(&["domain", &file, "--color", "H", "-o", &s(&svg)]);
+        assert!(
+            std::fs::read_to_string(&svg).unwrap().contains("<svg"),
+            "{name}"
+        );
+    }
+}

@@ -196,9 +196,9 @@ pub enum ExprError {
     /// The value or gradient is not finite at a point.
     #[error("the formula has no finite value or gradient at ({x}, {y})")]
     NotFinite {
-        /// x.
+        /// The x coordinate of the point.
         x: f64,
-        /// y.
+        /// The y coordinate of the point.
         y: f64,
     },
 }

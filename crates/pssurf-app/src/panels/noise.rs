@@ -1,8 +1,7 @@
-//! Reproducible noise on a UPS surface's control points (for denoising experiments).
+//! Reproducible noise on a surface's control points (for denoising experiments).
 
-use super::{Panel, PanelContext, needs_ups};
+use super::{Panel, PanelContext};
 use pssurf::noise::NoiseKind;
-use pssurf::surface::{Surface, UpsSurface};
 
 /// The noise dialog.
 #[derive(Debug)]
@@ -31,8 +30,9 @@ impl Panel for NoisePanel {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, cx: &mut PanelContext<'_>) {
-        let Some(u) = cx.uniform() else {
-            return needs_ups(ui);
+        let Some(surface) = cx.object().map(|o| &o.surface) else {
+            ui.weak("Select a surface to perturb its control points.");
+            return;
         };
         egui::Grid::new("noise").num_columns(2).show(ui, |ui| {
             ui.label("amplitude");
@@ -59,16 +59,8 @@ impl Panel for NoisePanel {
                 NoiseKind::Uniform
             };
             let (a, seed) = (self.amplitude, self.seed);
-            let noisy = match u {
-                UpsSurface::Functional(s) => UpsSurface::Functional(s.with_noise(a, kind, seed)),
-                UpsSurface::Parametric(s) => UpsSurface::Parametric(s.with_noise(a, kind, seed)),
-                UpsSurface::Rational(_) => {
-                    *cx.status =
-                        "noise is for polynomial UPS surfaces; this one is rational".into();
-                    return;
-                }
-            };
-            cx.replace_surface("add noise", Surface::from(noisy));
+            let noisy = surface.with_noise(a, kind, seed);
+            cx.replace_surface("add noise", noisy);
             *cx.status = format!("added noise of amplitude {a} (seed {seed})");
             self.seed += 1;
         }

@@ -2,10 +2,8 @@
 //! thresholds, hard or soft, applied as an undoable step.
 
 use super::{Panel, PanelContext, needs_ups};
-use pssurf::surface::{Surface, UpsSurface};
-use pssurf::ups::Ups;
+use pssurf::surface::Surface;
 use pssurf::ups::threshold::{LevelStats, Shrink, ThresholdRule};
-use pssurf::vector::Vector;
 
 /// The wavelet dialog.
 #[derive(Debug)]
@@ -32,23 +30,6 @@ impl Default for WaveletPanel {
             last: Vec::new(),
         }
     }
-}
-
-fn spectrum<V: Vector + Default>(s: &Ups<V>, levels: u32) -> Result<Vec<LevelStats>, String> {
-    Ok(s.wavelet_transform(levels)
-        .map_err(|e| e.to_string())?
-        .spectrum())
-}
-
-fn threshold<V: Vector + Default>(
-    s: &Ups<V>,
-    levels: u32,
-    rule: ThresholdRule,
-    mode: Shrink,
-) -> Result<(Ups<V>, Vec<LevelStats>), String> {
-    let mut d = s.wavelet_transform(levels).map_err(|e| e.to_string())?;
-    let stats = d.threshold(|_, _| rule, mode);
-    Ok((d.reconstruct(), stats))
 }
 
 impl Panel for WaveletPanel {
@@ -89,26 +70,15 @@ impl Panel for WaveletPanel {
             *r != revision || s.iter().map(|x| x.level).max() != Some(self.levels as usize)
         });
         if stale {
-            let s = match u {
-                UpsSurface::Functional(s) => spectrum(s, self.levels),
-                UpsSurface::Parametric(s) => spectrum(s, self.levels),
-                UpsSurface::Rational(_) => {
-                    Err("wavelets are defined for polynomial UPS surfaces".into())
-                }
-            };
-            match s {
-                Ok(s) => self.spectrum = Some((revision, s)),
+            match u.wavelet_transform(self.levels) {
+                Ok(d) => self.spectrum = Some((revision, d.spectrum())),
                 Err(e) => {
-                    ui.colored_label(egui::Color32::DARK_RED, e);
+                    ui.colored_label(egui::Color32::DARK_RED, e.to_string());
                     return;
                 }
             }
         }
-        let names: &[&str] = if matches!(u, UpsSurface::Functional(_)) {
-            &["z"]
-        } else {
-            &["x", "y", "z"]
-        };
+        let names = u.coordinate_names();
         if let Some((_, s)) = &self.spectrum {
             stats_grid(ui, "spectrum", s, names, false);
         }
@@ -122,16 +92,7 @@ impl Panel for WaveletPanel {
             } else {
                 Shrink::Hard
             };
-            let r = match u {
-                UpsSurface::Functional(s) => threshold(s, self.levels, rule, mode)
-                    .map(|(s, st)| (UpsSurface::Functional(s), st)),
-                UpsSurface::Parametric(s) => threshold(s, self.levels, rule, mode)
-                    .map(|(s, st)| (UpsSurface::Parametric(s), st)),
-                UpsSurface::Rational(_) => {
-                    Err("wavelets are defined for polynomial UPS surfaces".into())
-                }
-            };
-            match r {
+            match u.denoise(self.levels, |_, _| rule, mode) {
                 Ok((s, stats)) => {
                     let zeroed: usize = stats.iter().map(|s| s.zeroed).sum();
                     let total: usize = stats.iter().map(|s| s.count).sum();
@@ -140,7 +101,7 @@ impl Panel for WaveletPanel {
                         format!("thresholding set {zeroed} of {total} coefficients to zero");
                     self.last = stats;
                 }
-                Err(e) => *cx.status = e,
+                Err(e) => *cx.status = e.to_string(),
             }
         }
         if !self.last.is_empty() {

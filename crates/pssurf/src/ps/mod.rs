@@ -110,9 +110,9 @@ pub enum PsError {
     /// The point lies outside the triangulated domain.
     #[error("the point ({x}, {y}) lies outside the domain")]
     OutsideDomain {
-        /// x.
+        /// The first coordinate of the rejected point.
         x: f64,
-        /// y.
+        /// The second coordinate of the rejected point.
         y: f64,
     },
 }

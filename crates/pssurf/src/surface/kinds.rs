@@ -36,46 +36,64 @@ pub(crate) trait PsKind {
     fn write_vertices(&mut self, vertices: &[(usize, [ControlPoint; 3])]);
 }
 
-impl PsKind for PsSpline<f64> {
+/// The values of a polynomial PS-spline: heights (functional) or points (parametric).
+pub(crate) trait PsValue: crate::vector::Vector {
+    /// Which coordinates of a control point are free.
+    const FREEDOM: ControlFreedom;
+    /// The surface jet of the spline's jet at `uv` (the graph for heights).
+    fn surface_jet(jet: &Jet<Self>, uv: Point2<f64>) -> Jet<Vector3<f64>>;
+    /// The control point of value `v` whose domain point is `xy` (Definition 2.23).
+    fn control_point(v: Self, xy: Point2<f64>) -> Vector3<f64>;
+    /// The value of a control point.
+    fn from_control_point(p: Vector3<f64>) -> Self;
+}
+
+impl PsValue for f64 {
+    const FREEDOM: ControlFreedom = ControlFreedom::Height;
+    #[inline]
+    fn surface_jet(jet: &Jet<f64>, uv: Point2<f64>) -> Jet<Vector3<f64>> {
+        graph_jet(uv, jet)
+    }
+    fn control_point(v: f64, xy: Point2<f64>) -> Vector3<f64> {
+        Vector3::new(xy.x, xy.y, v)
+    }
+    fn from_control_point(p: Vector3<f64>) -> f64 {
+        p.z
+    }
+}
+
+impl PsValue for Vector3<f64> {
+    const FREEDOM: ControlFreedom = ControlFreedom::Full;
+    #[inline]
+    fn surface_jet(jet: &Jet<Vector3<f64>>, _: Point2<f64>) -> Jet<Vector3<f64>> {
+        *jet
+    }
+    fn control_point(v: Vector3<f64>, _: Point2<f64>) -> Vector3<f64> {
+        v
+    }
+    fn from_control_point(p: Vector3<f64>) -> Vector3<f64> {
+        p
+    }
+}
+
+impl<V: PsValue> PsKind for PsSpline<V> {
     fn ps_basis(&self) -> &Arc<PsBasis> {
         self.basis()
     }
     #[inline]
     fn located_jet(&self, loc: &SubLocation, uv: Point2<f64>) -> Jet<Vector3<f64>> {
-        graph_jet(uv, &self.jet_at(loc).jet)
+        V::surface_jet(&self.jet_at(loc).jet, uv)
     }
     fn vertex_point(&self, i: usize, j: usize) -> ControlPoint {
-        let q = self.basis().control_xy(i)[j];
-        ControlPoint::new(Vector3::new(q.x, q.y, self.coefficients()[i][j]))
+        let xy = self.basis().control_xy(i)[j];
+        ControlPoint::new(V::control_point(self.coefficients()[i][j], xy))
     }
     const RATIONAL: bool = false;
-    const FREEDOM: ControlFreedom = ControlFreedom::Height;
+    const FREEDOM: ControlFreedom = V::FREEDOM;
     fn write_vertices(&mut self, vertices: &[(usize, [ControlPoint; 3])]) {
         let changes: Vec<_> = vertices
             .iter()
-            .map(|(i, c)| (*i, c.map(|p| p.position.z)))
-            .collect();
-        self.set_vertices(&changes);
-    }
-}
-
-impl PsKind for PsSpline<Vector3<f64>> {
-    fn ps_basis(&self) -> &Arc<PsBasis> {
-        self.basis()
-    }
-    #[inline]
-    fn located_jet(&self, loc: &SubLocation, _: Point2<f64>) -> Jet<Vector3<f64>> {
-        self.jet_at(loc).jet
-    }
-    fn vertex_point(&self, i: usize, j: usize) -> ControlPoint {
-        ControlPoint::new(self.coefficients()[i][j])
-    }
-    const RATIONAL: bool = false;
-    const FREEDOM: ControlFreedom = ControlFreedom::Full;
-    fn write_vertices(&mut self, vertices: &[(usize, [ControlPoint; 3])]) {
-        let changes: Vec<_> = vertices
-            .iter()
-            .map(|(i, c)| (*i, c.map(|p| p.position)))
+            .map(|(i, c)| (*i, c.map(|p| V::from_control_point(p.position))))
             .collect();
         self.set_vertices(&changes);
     }
