@@ -20,22 +20,32 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 ///
 /// A PS-spline is a C¹ piecewise quadratic on any triangulation, written in Dierckx's
 /// normalized B-spline form: three control points per vertex forming a control triangle
-/// tangent to the surface. Surfaces are stored in pssurf JSON files (docs/format.md).
-///
-/// Typical use:
-///   pssurf fit data.csv -o surf.json          # interpolate x,y,z (and optional zx,zy)
-///   pssurf info surf.json                     # what the file holds, PS-triangle quality
-///   pssurf eval surf.json --grid 200x200 -o grid.npy --derivatives
-///   pssurf new ups --sides 6 --size 4 --height "sin(x)*cos(y)" -o ups.json
-///   pssurf subdivide ups.json --times 3 -o fine.json
-///   pssurf noise fine.json --amplitude 0.01 --seed 1 -o noisy.json
-///   pssurf denoise noisy.json --levels 3 --threshold 5% -o clean.json
+/// tangent to the surface. Surfaces (PS, NURPS, UPS and Bézier triangles) are stored in
+/// pssurf JSON files (docs/format.md).
 #[derive(Parser, Debug)]
-#[command(name = "pssurf", version, about, long_about, max_term_width = 100)]
+#[command(
+    name = "pssurf",
+    version,
+    about,
+    long_about,
+    max_term_width = 100,
+    after_long_help = TYPICAL_USE
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
+
+/// Examples printed by `pssurf --help`, line by line.
+const TYPICAL_USE: &str = "\
+Typical use:
+  pssurf fit data.csv -o surf.json          # interpolate x,y,z (and optional zx,zy)
+  pssurf info surf.json                     # what the file holds, PS-triangle quality
+  pssurf eval surf.json --grid 200x200 -o grid.npy --derivatives
+  pssurf new ups --sides 6 --size 4 --height \"sin(x)*cos(y)\" -o ups.json
+  pssurf subdivide ups.json --times 3 -o fine.json
+  pssurf noise fine.json --amplitude 0.01 --seed 1 -o noisy.json
+  pssurf denoise noisy.json --levels 3 --threshold 5% -o clean.json";
 
 #[derive(Subcommand, Debug)]
 enum Command {

@@ -442,3 +442,23 @@ fn ups_commands_reject_bad_input() {
     assert!(e.contains("finite"), "{e}");
     assert!(!out.exists());
 }
+
+/// Issue 13 ("every load error is printed twice"): the cause appears once in the message.
+#[test]
+fn load_errors_are_printed_once() {
+    let d = tmp();
+    let truncated = write(
+        d.path(),
+        "t.json",
+        "{\"format\":\"pssurf\",\"version\":1,\"kind\":[",
+    );
+    let missing = d.path().join("missing.json");
+    for (file, cause) in [
+        (s(&truncated), "EOF while parsing"),
+        (s(&missing), "No such file"),
+    ] {
+        let err = fails(&["info", &file]);
+        assert_eq!(err.matches(cause).count(), 1, "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+}

@@ -496,3 +496,42 @@ fn every_kind_goes_through_every_interrogation_command() {
         );
     }
 }
+
+/// Noise whose amplitude overflows a coordinate is refused for every kind, and no file is
+/// written.
+#[test]
+fn noise_that_overflows_is_refused_for_every_kind() {
+    let d = tmp();
+    for (name, file) in every_kind(d.path()) {
+        let out = d.path().join(format!("{name}-noisy.json"));
+        let err = fails(&[
+            "noise",
+            &file,
+            "--amplitude",
+            "1.7e308",
+            "--distribution",
+            "gaussian",
+            "--seed",
+            "1",
+            "-o",
+            &s(&out),
+        ]);
+        assert!(
+            err.contains("would make the surface invalid"),
+            "{name}: {err}"
+        );
+        assert!(!out.exists(), "{name}");
+        // Ordinary noise works on every kind and the result loads again.
+        ok(&[
+            "noise",
+            &file,
+            "--amplitude",
+            "0.01",
+            "--seed",
+            "1",
+            "-o",
+            &s(&out),
+        ]);
+        ok(&["info", &s(&out)]);
+    }
+}

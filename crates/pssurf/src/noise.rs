@@ -17,7 +17,8 @@ pub enum NoiseKind {
 }
 
 /// Perturbs every coordinate of every value independently by noise of amplitude `amplitude`,
-/// drawn from a generator seeded with `seed` (same seed and order, same noise).
+/// drawn from a generator seeded with `seed` (same seed and order, same noise). Coordinates
+/// may overflow to infinity for absurd amplitudes: callers check the result.
 pub fn perturb<'a, V: Vector>(
     values: impl Iterator<Item = &'a mut V>,
     amplitude: f64,
@@ -31,7 +32,9 @@ pub fn perturb<'a, V: Vector>(
     for v in values {
         for (k, x) in coords.iter_mut().enumerate() {
             let delta = match kind {
-                NoiseKind::Uniform => rng.random_range(-a..=a),
+                // For a width 2A beyond the largest double, scale a draw from [−1, 1].
+                NoiseKind::Uniform if (2.0 * a).is_finite() => rng.random_range(-a..=a),
+                NoiseKind::Uniform => rng.random_range(-1.0..=1.0) * a,
                 NoiseKind::Gaussian => normal.sample(&mut rng),
             };
             *x = v.coord(k) + delta;

@@ -178,6 +178,25 @@ pub mod meshes {
         compact(full.vertices(), &keep)
     }
 
+    /// A square domain with a square hole (the middle ninth) and a jittered interior: two
+    /// boundary loops.
+    pub fn holed(r: &mut ChaCha8Rng, k: usize) -> Triangulation {
+        let full = structured(r, 3 * k);
+        let (lo, hi) = (k as f64, 2.0 * k as f64);
+        let keep: Vec<[usize; 3]> = full
+            .triangles()
+            .iter()
+            .filter(|t| {
+                let c = t.iter().fold(Point2::origin(), |acc: Point2<f64>, &v| {
+                    acc + full.vertex(v as usize).coords / 3.0
+                });
+                !(c.x > lo && c.x < hi && c.y > lo && c.y < hi)
+            })
+            .map(|t| t.map(|v| v as usize))
+            .collect();
+        compact(full.vertices(), &keep)
+    }
+
     /// Drops unused vertices and renumbers.
     pub fn compact(vertices: &[Point2<f64>], tris: &[[usize; 3]]) -> Triangulation {
         let mut map = vec![usize::MAX; vertices.len()];
@@ -206,6 +225,7 @@ pub mod meshes {
             ("boundary-heavy", boundary_heavy(&mut r, 40)),
             ("structured", structured(&mut r, 6)),
             ("l-shape", l_shape(&mut r, 6)),
+            ("holed", holed(&mut r, 2)),
         ]
     }
 }

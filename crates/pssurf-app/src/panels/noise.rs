@@ -59,7 +59,13 @@ impl Panel for NoisePanel {
                 NoiseKind::Uniform
             };
             let (a, seed) = (self.amplitude, self.seed);
-            let noisy = surface.with_noise(a, kind, seed);
+            let noisy = match surface.with_noise(a, kind, seed) {
+                Ok(noisy) => noisy,
+                Err(e) => {
+                    *cx.status = format!("noise refused: {e}");
+                    return;
+                }
+            };
             cx.replace_surface("add noise", noisy);
             *cx.status = format!("added noise of amplitude {a} (seed {seed})");
             self.seed += 1;

@@ -54,7 +54,7 @@ struct Info {
     weights: Option<Stats>,
     #[serde(flatten)]
     ps: Option<PsInfo>,
-    degree: Option<usize>,
+    degree: usize,
     uniform: Option<UniformInfo>,
 }
 
@@ -121,11 +121,7 @@ fn collect(s: &Surface, file: String) -> Info {
             .is_rational()
             .then(|| stats(points.iter().map(|p| p.weight).collect())),
         ps: s.ps_basis().map(|b| ps_info(b)),
-        degree: match s {
-            Surface::Bezier(b) => Some(b.degree()),
-            Surface::RationalBezier(b) => Some(b.degree()),
-            _ => None,
-        },
+        degree: s.piece_degree(),
         uniform: s.uniform().map(uniform_info),
     }
 }
@@ -179,9 +175,10 @@ fn print_table(info: &Info) {
         println!("basis functions      {}", ps.basis_functions);
         println!("split points         {}", ps.split);
     }
-    if let Some(m) = info.degree {
-        println!("degree               {m} (one triangular piece)");
-    }
+    println!(
+        "pieces               {} of degree {}",
+        info.pieces, info.degree
+    );
     let (dlo, dhi) = (info.domain_min, info.domain_max);
     println!(
         "domain               [{}, {}] × [{}, {}], area {}{}",

@@ -45,7 +45,9 @@ pub fn run(args: &NoiseArgs) -> Result<()> {
     };
     let (a, seed) = (args.amplitude, args.seed);
     let file = pssurf::io::load(&args.surface)?;
-    let out = file.with_noise(a, kind, seed);
+    let out = file.with_noise(a, kind, seed).map_err(|e| {
+        anyhow::anyhow!("noise of amplitude {a:e} would make the surface invalid: {e}")
+    })?;
     pssurf::io::save(&out, &args.output)?;
     let name = match args.distribution {
         Distribution::Uniform => "uniform",

@@ -20,7 +20,9 @@ use thiserror::Error;
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum BezierError {
     /// The number of ordinates (or weights) does not match the degree.
-    #[error("a degree-m net needs {expected} ordinates, found {found}")]
+    #[error(
+        "the net needs {expected} ordinates for its degree ((m + 1)(m + 2)/2 for a triangle of degree m, m + 1 for a curve), found {found}"
+    )]
     WrongOrdinateCount {
         /// (m + 1)(m + 2)/2 for a triangle, m + 1 for a curve.
         expected: usize,

@@ -12,8 +12,8 @@ use crate::surface::{PieceFrame, PieceKind, PiecewiseSurface};
 ///
 /// Each piece is covered by a regular grid of n = 2^level steps per side: a triangular piece
 /// (a PS sub-triangle) gets (n + 1)(n + 2)/2 vertices and n² triangles, a rectangular piece
-/// (n + 1)² vertices and 2n² triangles. Vertices on the edges between pieces appear once per piece, each with its own
-/// piece's curvature: a C¹ PS surface has continuous points and normals there, but its
+/// (n + 1)² vertices and 2n² triangles. Vertices on the edges between pieces appear once per
+/// piece, each with its own piece's curvature: a C¹ PS surface has continuous points and normals there, but its
 /// curvature jumps, and the plots must show it.
 #[derive(Clone, Debug, Default)]
 pub struct SampledSurface {

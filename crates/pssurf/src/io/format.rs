@@ -54,20 +54,20 @@ pub enum FormatError {
 #[derive(Debug, Error)]
 pub enum FileError {
     /// The operating system refused.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {cause}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
+        /// The cause (part of this error's message, so not repeated as its `source`).
+        cause: std::io::Error,
     },
     /// The contents are invalid.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {cause}", path.display())]
     Format {
         /// The file.
         path: PathBuf,
-        /// The cause.
-        source: FormatError,
+        /// The cause (part of this error's message, so not repeated as its `source`).
+        cause: FormatError,
     },
 }
 
@@ -815,23 +815,23 @@ fn bezier_file(
 
 /// Reads and validates a surface file.
 pub fn load(path: &Path) -> Result<Surface, FileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
+    let text = std::fs::read_to_string(path).map_err(|cause| FileError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     })?;
-    from_json_str(&text).map_err(|source| FileError::Format {
+    from_json_str(&text).map_err(|cause| FileError::Format {
         path: path.to_path_buf(),
-        source,
+        cause,
     })
 }
 
 /// Writes a surface file atomically and durably (a failure leaves any previous file intact).
 pub fn save(surface: &Surface, path: &Path) -> Result<(), FileError> {
     let text = to_json_string(surface);
-    super::atomic_write_bytes(path, super::Durability::Durable, text.as_bytes()).map_err(|source| {
+    super::atomic_write_bytes(path, super::Durability::Durable, text.as_bytes()).map_err(|cause| {
         FileError::Io {
             path: path.to_path_buf(),
-            source,
+            cause,
         }
     })
 }

@@ -346,3 +346,112 @@ mod uniform {
         );
     }
 }
+
+mod bezier {
+    //! Bézier and rational Bézier triangles in files.
+
+    use super::*;
+    use crate::bezier::index::net_len;
+    use crate::bezier::{BezierTriangle, RationalBezierTriangle};
+
+    fn surfaces() -> Vec<Surface> {
+        let mut r = rng(63);
+        let mut out = Vec::new();
+        for degree in [0, 1, 2, 5] {
+            let t = random_triangle(&mut r);
+            let pts: Vec<Vector3<f64>> =
+                (0..net_len(degree)).map(|_| random_vec3(&mut r)).collect();
+            let w: Vec<f64> = (0..pts.len()).map(|_| uniform(&mut r, 1e-3, 1e3)).collect();
+            out.push(Surface::from(BezierTriangle::new(t, degree, pts.clone())));
+            out.push(Surface::from(RationalBezierTriangle::new(
+                t, degree, pts, w,
+            )));
+        }
+        out
+    }
+
+    #[test]
+    fn bezier_triangles_round_trip_exactly() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut r = rng(64);
+        for (k, s) in surfaces().into_iter().enumerate() {
+            let path = dir.path().join(format!("b{k}.json"));
+            save(&s, &path).unwrap();
+            let back = load(&path).unwrap();
+            assert_eq!(back.kind(), s.kind());
+            assert_eq!(back.piece_degree(), s.piece_degree());
+            assert_eq!(back.control_points(), s.control_points());
+            assert_eq!(to_json_string(&back), to_json_string(&s));
+            let Some(crate::surface::PieceShape::Triangle(t)) =
+                Some(crate::surface::PiecewiseSurface::piece_shape(&s, 0))
+            else {
+                unreachable!()
+            };
+            for _ in 0..10 {
+                let p = t.point(random_bary(&mut r));
+                assert_eq!(back.jet(p).unwrap(), s.jet(p).unwrap());
+            }
+        }
+    }
+
+    fn with(text: &str, f: impl Fn(&mut serde_json::Value)) -> FormatError {
+        let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
+        f(&mut v);
+        err(&v.to_string())
+    }
+
+    fn at(e: &FormatError) -> &str {
+        match e {
+            FormatError::Invalid { at, .. } => at,
+            other => panic!("expected an invalid field, got {other}"),
+        }
+    }
+
+    #[test]
+    fn bad_bezier_files_are_rejected_with_their_location() {
+        let s = surfaces();
+        let (poly, rational) = (to_json_string(&s[4]), to_json_string(&s[5]));
+        // Weights where there are none, and none where they are needed.
+        let e = with(&poly, |v| {
+            v["bezier"]["weights"] = serde_json::json!(vec![1.0; 6])
+        });
+        assert_eq!(at(&e), "bezier.weights", "{e}");
+        let e = with(&rational, |v| {
+            v["bezier"].as_object_mut().unwrap().remove("weights");
+        });
+        assert_eq!(at(&e), "bezier.weights", "{e}");
+        // A zero weight, a missing ordinate, a degenerate triangle, an absurd degree.
+        let e = with(&rational, |v| v["bezier"]["weights"][3] = 0.0.into());
+        assert_eq!(at(&e), "bezier.weights[3]", "{e}");
+        let e = with(&poly, |v| {
+            v["bezier"]["points"].as_array_mut().unwrap().pop();
+        });
+        assert_eq!(at(&e), "bezier", "{e}");
+        assert!(e.to_string().contains("needs 6 ordinates"), "{e}");
+        let e = with(&poly, |v| {
+            v["bezier"]["triangle"] = serde_json::json!([[0, 0], [1, 1], [2, 2]])
+        });
+        assert_eq!(at(&e), "bezier.triangle", "{e}");
+        let e = with(&poly, |v| v["bezier"]["degree"] = 31.into());
+        assert_eq!(at(&e), "bezier.degree", "{e}");
+        // Huge coordinates make the triangle's map overflow: refused, not evaluated.
+        let e = with(&poly, |v| {
+            v["bezier"]["triangle"] = serde_json::json!([[0, 0], [1e300, 0], [0, 1e300]])
+        });
+        assert_eq!(at(&e), "bezier.triangle", "{e}");
+        // Fields of another kind, and a Bézier section in a PS file.
+        let e = with(&poly, |v| {
+            v["domain"] = serde_json::json!({"vertices": [], "triangles": []})
+        });
+        assert_eq!(at(&e), "domain", "{e}");
+        let e = with(&functional_text(), |v| v["bezier"] = v["domain"].clone());
+        assert!(
+            matches!(e, FormatError::Syntax { .. }) || at(&e) == "bezier",
+            "{e}"
+        );
+        let e = with(&poly, |v| {
+            v.as_object_mut().unwrap().remove("bezier");
+        });
+        assert_eq!(at(&e), "bezier", "{e}");
+    }
+}

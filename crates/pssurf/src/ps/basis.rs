@@ -232,8 +232,18 @@ impl PsBasis {
 
     /// The Bézier net of triangle `t` for per-vertex control values.
     pub fn net<T: net::Combine>(&self, t: usize, ctrl: &[[T; 3]]) -> [T; NET_LEN] {
+        self.net_with(t, |i| ctrl[i])
+    }
+
+    /// The Bézier net of triangle `t` with the control values of vertex i given by `ctrl(i)`
+    /// (for control values not stored as one slice).
+    pub fn net_with<T: net::Combine>(
+        &self,
+        t: usize,
+        ctrl: impl Fn(usize) -> [T; 3],
+    ) -> [T; NET_LEN] {
         let v = self.tri.triangle(t);
-        self.stencil(t).apply([ctrl[v[0]], ctrl[v[1]], ctrl[v[2]]])
+        self.stencil(t).apply(v.map(ctrl))
     }
 
     /// Where `p` lies in Δ*, walking from triangle `hint` (any triangle; a nearby one makes

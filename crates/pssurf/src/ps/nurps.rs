@@ -6,7 +6,7 @@ use nalgebra::Point2;
 
 use super::basis::{PsBasis, SubLocation};
 use super::net::{NET_LEN, SUB_ORDINATES, Weighted};
-use super::spline::{PsJet, build_nets, touched_triangles};
+use super::spline::{PsJet, build_nets, rebuild_nets};
 use super::{PatchId, PsError};
 use crate::bezier::RationalBezierTriangle;
 use crate::bezier::rational::rational_quadratic_jet;
@@ -116,17 +116,18 @@ impl<V: Vector> Nurps<V> {
             self.points[i] = p;
             self.weights[i] = w;
         }
-        let touched = touched_triangles(&self.basis, changes.iter().map(|c| c.0));
-        for t in touched {
-            let v = self.basis.triangulation().triangle(t);
-            let ctrl = v.map(|i| {
-                std::array::from_fn(|j| Weighted {
-                    point: self.points[i][j],
-                    weight: self.weights[i][j],
-                })
-            });
-            self.nets[t] = self.basis.stencil(t).apply(ctrl);
-        }
+        let basis = &self.basis;
+        let touched = basis
+            .triangulation()
+            .molecules_of(changes.iter().map(|c| c.0));
+        let (points, weights) = (&self.points, &self.weights);
+        let ctrl = |i: usize| -> [Weighted<V>; 3] {
+            std::array::from_fn(|j| Weighted {
+                point: points[i][j],
+                weight: weights[i][j],
+            })
+        };
+        rebuild_nets(&mut self.nets, &touched, |t| basis.net_with(t, ctrl));
     }
 
     /// The rational quadratic Bézier patch of sub-triangle `sub` of triangle `t`.

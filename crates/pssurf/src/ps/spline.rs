@@ -136,10 +136,12 @@ impl<V: Vector> PsSpline<V> {
         for &(i, c) in changes {
             self.coeffs[i] = c;
         }
-        let touched = touched_triangles(&self.basis, changes.iter().map(|c| c.0));
-        for t in touched {
-            self.nets[t] = self.basis.net(t, &self.coeffs);
-        }
+        let basis = &self.basis;
+        let touched = basis
+            .triangulation()
+            .molecules_of(changes.iter().map(|c| c.0));
+        let coeffs = &self.coeffs;
+        rebuild_nets(&mut self.nets, &touched, |t| basis.net(t, coeffs));
     }
 
     /// The 19 Bézier ordinates of triangle `t` (layout in [`super::net`]).
@@ -321,18 +323,24 @@ impl<V: Vector> Evaluator<'_, V> {
     }
 }
 
-/// The triangles of the molecules of `vertices`, each once, in increasing order.
-pub(crate) fn touched_triangles(
-    basis: &PsBasis,
-    vertices: impl Iterator<Item = usize>,
-) -> Vec<usize> {
-    let tri = basis.triangulation();
-    let mut out: Vec<usize> = vertices
-        .flat_map(|i| tri.molecule(i).iter().map(|&t| t as usize))
-        .collect();
-    out.sort_unstable();
-    out.dedup();
-    out
+/// Recomputes `nets[t] = net(t)` for the `touched` triangles (sorted): one by one for a local
+/// edit, in parallel over all triangles when the edit touches most of them (e.g. noise).
+pub(crate) fn rebuild_nets<T: Send>(
+    nets: &mut [T],
+    touched: &[usize],
+    net: impl Fn(usize) -> T + Sync,
+) {
+    if 2 * touched.len() > nets.len() {
+        nets.par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .filter(|(t, _)| touched.binary_search(t).is_ok())
+            .for_each(|(t, n)| *n = net(t));
+    } else {
+        for &t in touched {
+            nets[t] = net(t);
+        }
+    }
 }
 
 /// The Bézier nets of all triangles for per-vertex control values (in parallel).

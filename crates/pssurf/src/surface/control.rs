@@ -63,6 +63,9 @@ pub enum EditError {
         /// The value given.
         weight: f64,
     },
+    /// A noise amplitude that is negative or not finite.
+    #[error("the noise amplitude {0} must be a finite non-negative number")]
+    InvalidAmplitude(f64),
     /// A weight other than 1 was given to a polynomial surface.
     #[error(
         "control point {id} cannot take weight {weight}: the surface is not rational (weights are 1)"

@@ -159,16 +159,18 @@ pub(crate) fn ps_piece_jet<T: PsKind>(s: &T, k: usize, at: &PiecePoint) -> Jet<V
     s.located_jet(&loc, at.uv)
 }
 
-/// The pieces of the molecule of vertex i: the six sub-triangles of each of its triangles.
-pub(crate) fn molecule_pieces(basis: &PsBasis, i: usize) -> Vec<usize> {
-    let mut out: Vec<usize> = basis
+/// The pieces of the molecules of `vertices`: the six sub-triangles of each of their
+/// triangles, in increasing order.
+pub(crate) fn molecule_pieces(
+    basis: &PsBasis,
+    vertices: impl IntoIterator<Item = usize>,
+) -> Vec<usize> {
+    basis
         .triangulation()
-        .molecule(i)
-        .iter()
-        .flat_map(|&t| (6 * t as usize)..(6 * t as usize + 6))
-        .collect();
-    out.sort_unstable();
-    out
+        .molecules_of(vertices)
+        .into_iter()
+        .flat_map(|t| 6 * t..6 * t + 6)
+        .collect()
 }
 
 /// [`ControlNet::set_control_points`] for PS kinds: validate all, then write each touched
@@ -192,14 +194,10 @@ pub(crate) fn ps_set_control_points<T: PsKind>(
         touched[k].1[j] = p;
     }
     s.write_vertices(&touched);
-    let basis = s.ps_basis();
-    let mut pieces: Vec<usize> = touched
-        .iter()
-        .flat_map(|(i, _)| molecule_pieces(basis, *i))
-        .collect();
-    pieces.sort_unstable();
-    pieces.dedup();
-    Ok(pieces)
+    Ok(molecule_pieces(
+        s.ps_basis(),
+        touched.iter().map(|(i, _)| *i),
+    ))
 }
 
 /// Implements the surface traits for a PS kind through the generic functions above.
@@ -254,7 +252,7 @@ macro_rules! impl_ps_kind {
                 self.basis().triangulation().vertex(id.0 / 3)
             }
             fn support(&self, id: ControlId) -> Vec<usize> {
-                molecule_pieces(self.basis(), id.0 / 3)
+                molecule_pieces(self.basis(), [id.0 / 3])
             }
             fn set_control_points(
                 &mut self,

@@ -161,6 +161,17 @@ impl Surface {
         }
     }
 
+    /// The total degree of each piece's polynomial (of numerator and denominator for the
+    /// rational kinds): 2 for the PS, NURPS and UPS kinds (quadratic Bézier pieces on Δ*), m
+    /// for a Bézier triangle of degree m.
+    pub fn piece_degree(&self) -> usize {
+        match self {
+            Surface::Bezier(s) => s.degree(),
+            Surface::RationalBezier(s) => s.degree(),
+            _ => 2,
+        }
+    }
+
     /// The uniform form of a UPS surface.
     pub fn uniform(&self) -> Option<&UpsSurface> {
         match self {
@@ -169,7 +180,8 @@ impl Surface {
         }
     }
 
-    /// The parameter domain.
+    /// The parameter domain (built from the triangulation's boundary on each call: keep it
+    /// when it is used often).
     pub fn domain(&self) -> Domain {
         match self {
             Surface::Bezier(s) => Domain::triangle(s.domain()),
@@ -185,9 +197,43 @@ impl Surface {
     /// The surface with every free coordinate of every control point perturbed reproducibly
     /// (uniform or Gaussian noise of amplitude `amplitude` from a generator seeded with
     /// `seed`, in control-point id order; see [`crate::noise::perturb`]). Weights are kept.
-    pub fn with_noise(&self, amplitude: f64, kind: NoiseKind, seed: u64) -> Surface {
+    ///
+    /// ```
+    /// use pssurf::prelude::*;
+    /// use pssurf::noise::NoiseKind;
+    /// use pssurf::surface::EditError;
+    /// use std::sync::Arc;
+    /// let t = Triangulation::try_new(
+    ///     vec![Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0)],
+    ///     vec![[0, 1, 2]],
+    /// )?;
+    /// let s = Surface::from(PsSpline::new(Arc::new(PsBasis::optimal(t)?), vec![[0.0; 3]; 3])?);
+    /// // Noise so large that a coordinate overflows is refused, not returned.
+    /// let e = s.with_noise(f64::MAX, NoiseKind::Gaussian, 1).unwrap_err();
+    /// assert!(matches!(e, EditError::NonFinite(_)));
+    /// let e = s.with_noise(f64::NAN, NoiseKind::Uniform, 1).unwrap_err();
+    /// assert!(matches!(e, EditError::InvalidAmplitude(_)));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_noise(
+        &self,
+        amplitude: f64,
+        kind: NoiseKind,
+        seed: u64,
+    ) -> Result<Surface, EditError> {
+        if !(amplitude.is_finite() && amplitude >= 0.0) {
+            return Err(EditError::InvalidAmplitude(amplitude));
+        }
         if let Surface::Uniform(u) = self {
-            return Surface::from(u.ups().with_noise(amplitude, kind, seed));
+            let out = Surface::from(u.ups().with_noise(amplitude, kind, seed));
+            return match out
+                .control_points()
+                .iter()
+                .position(|p| !p.position.iter().all(|x| x.is_finite()))
+            {
+                Some(id) => Err(EditError::NonFinite(id)),
+                None => Ok(out),
+            };
         }
         let mut out = self.clone();
         let points = self.control_points();
@@ -217,9 +263,8 @@ impl Surface {
                     .collect()
             }
         };
-        out.set_control_points(&changes)
-            .expect("finite noise on finite points");
-        out
+        out.set_control_points(&changes)?;
+        Ok(out)
     }
 }
 

@@ -10,6 +10,7 @@ use super::*;
 use crate::bezier::{BezierTriangle, RationalBezierTriangle};
 use crate::geometry::Triangle2;
 use crate::interrogate::{Curvature, fairness, sample_patches};
+use crate::noise::NoiseKind;
 use crate::ps::{Hermite, Nurps, PsBasis, PsSpline};
 use crate::test_util::*;
 use crate::triangulation::Triangulation;
@@ -299,8 +300,8 @@ fn noise_perturbs_every_free_coordinate_reproducibly_and_keeps_weights() {
     let mut r = rng(1105);
     let q = Quadric([0.2, 0.1, -0.3, 0.0, 0.5]);
     for s in every_kind(q, &mut r) {
-        let a = s.with_noise(0.01, crate::noise::NoiseKind::Uniform, 7);
-        let b = s.with_noise(0.01, crate::noise::NoiseKind::Uniform, 7);
+        let a = s.with_noise(0.01, NoiseKind::Uniform, 7).unwrap();
+        let b = s.with_noise(0.01, NoiseKind::Uniform, 7).unwrap();
         assert_eq!(a.control_points(), b.control_points());
         let mut moved_points = 0;
         for (p, n) in s.control_points().iter().zip(a.control_points()) {
@@ -313,6 +314,32 @@ fn noise_perturbs_every_free_coordinate_reproducibly_and_keeps_weights() {
             moved_points += usize::from(d.z != 0.0);
         }
         assert_eq!(moved_points, s.control_count(), "{}", s.kind());
+        for bad in [f64::NAN, f64::INFINITY, -1.0] {
+            assert!(matches!(
+                s.with_noise(bad, NoiseKind::Gaussian, 3),
+                Err(EditError::InvalidAmplitude(_))
+            ));
+        }
+        // Noise that overflows a coordinate is an error for every kind, never a surface with
+        // infinite control points. Gaussian noise of deviation MAX overflows a coordinate with
+        // probability 0.32; uniform noise in [−MAX, MAX] on coordinates of size 1 almost never
+        // does, and must not panic either way.
+        assert!(
+            matches!(
+                s.with_noise(f64::MAX, NoiseKind::Gaussian, 3),
+                Err(EditError::NonFinite(_))
+            ),
+            "{}",
+            s.kind()
+        );
+        match s.with_noise(f64::MAX, NoiseKind::Uniform, 3) {
+            Ok(n) => assert!(
+                n.control_points()
+                    .iter()
+                    .all(|p| p.position.iter().all(|x| x.is_finite()))
+            ),
+            Err(e) => assert!(matches!(e, EditError::NonFinite(_)), "{e}"),
+        }
     }
 }
 
@@ -635,5 +662,43 @@ fn domain_containment_agrees_with_point_location_on_random_meshes() {
     assert!(
         compared >= total * 95 / 100,
         "only {compared} of {total} points compared"
+    );
+}
+
+#[test]
+fn clipped_segments_are_inside_and_their_gaps_outside_on_random_meshes() {
+    let mut r = rng(1108);
+    let (mut checked, mut total) = (0, 0);
+    for (name, tri) in meshes::catalogue(1109) {
+        let d = Domain::from_triangulation(&tri);
+        let (lo, hi) = tri.bounds();
+        let pad = 0.2 * (hi - lo).norm();
+        let mut point = || {
+            Point2::new(
+                uniform(&mut r, lo.x - pad, hi.x + pad),
+                uniform(&mut r, lo.y - pad, hi.y + pad),
+            )
+        };
+        for _ in 0..100 {
+            let (a, b) = (point(), point());
+            let parts = d.clip_segment(a, b);
+            assert!(parts.windows(2).all(|w| w[0].end < w[1].start), "{name}");
+            for k in 0..=40 {
+                let t = k as f64 / 40.0;
+                let p = a + (b - a) * t;
+                total += 1;
+                // Within rounding of the boundary, rounding decides: skip and count.
+                if d.distance_to_boundary(p) < 1e-9 {
+                    continue;
+                }
+                let covered = parts.iter().any(|s| s.start <= t && t <= s.end);
+                assert_eq!(covered, d.contains(p), "{name}: t = {t} on {a} → {b}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(
+        checked >= total * 95 / 100,
+        "only {checked} of {total} compared"
     );
 }

@@ -147,6 +147,18 @@ impl Triangulation {
         &self.molecule_list[a..b]
     }
 
+    /// The triangles of the molecules of `vertices` (the union of the M_i), each once, in
+    /// increasing order: what a change of those vertices' control values touches.
+    pub fn molecules_of(&self, vertices: impl IntoIterator<Item = usize>) -> Vec<usize> {
+        let mut out: Vec<usize> = vertices
+            .into_iter()
+            .flat_map(|i| self.molecule(i).iter().map(|&t| t as usize))
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
     /// The molecule number m_i: the number of triangles in M_i (Definition 2.15).
     pub fn molecule_number(&self, i: usize) -> usize {
         self.molecule(i).len()

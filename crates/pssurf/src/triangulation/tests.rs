@@ -28,9 +28,13 @@ fn adjacency_is_symmetric_and_euler_holds() {
                     }
                 }
             }
-            // Simply connected domains: V − E + T = 1.
+            // A planar domain with h holes has h + 1 boundary loops and V − E + T = 1 − h.
+            let loops = crate::surface::Domain::from_triangulation(&t)
+                .boundary()
+                .len() as i64;
             let euler = t.vertex_count() as i64 - t.edge_count() as i64 + t.triangle_count() as i64;
-            assert_eq!(euler, 1, "{name}");
+            assert_eq!(euler, 2 - loops, "{name}");
+            assert_eq!(loops, 1 + i64::from(name == "holed"), "{name}");
             let total: usize = (0..t.vertex_count()).map(|v| t.molecule_number(v)).sum();
             assert_eq!(total, 3 * t.triangle_count());
             for v in 0..t.vertex_count() {

@@ -97,8 +97,7 @@ mod tests {
 
     /// max |s(p) − (x, y, q(x, y))| at a random point of every triangle.
     fn error(s: &Surface, q: impl Fn(f64, f64) -> f64, r: &mut rand_chacha::ChaCha8Rng) -> f64 {
-        let g = s;
-        let tri = g.ps_basis().unwrap().triangulation();
+        let tri = s.ps_basis().unwrap().triangulation();
         (0..tri.triangle_count())
             .map(|t| {
                 let v = tri.triangle(t);
@@ -107,7 +106,7 @@ mod tests {
                     + tri.vertex(v[1]).coords * b[1]
                     + tri.vertex(v[2]).coords * b[2])
                     .into();
-                (g.point(c).unwrap() - Vector3::new(c.x, c.y, q(c.x, c.y))).norm()
+                (s.point(c).unwrap() - Vector3::new(c.x, c.y, q(c.x, c.y))).norm()
             })
             .fold(0.0, f64::max)
     }
