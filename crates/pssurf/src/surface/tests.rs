@@ -125,52 +125,74 @@ fn every_kind(q: Quadric, r: &mut rand_chacha::ChaCha8Rng) -> Vec<Surface> {
 #[test]
 fn every_kind_samples_with_the_closed_form_curvature_through_the_enum() {
     let mut r = rng(1101);
-    let q = Quadric([0.7, -0.4, 0.3, 0.2, -0.1]);
-    let kinds = every_kind(q, &mut r);
-    let names: std::collections::HashSet<SurfaceKind> = kinds.iter().map(Surface::kind).collect();
-    assert_eq!(names.len(), 8, "one surface of every kind");
-    for s in &kinds {
-        let sampled = sample_patches(s, 1, true);
-        assert_eq!(
-            sampled.mesh.positions.len(),
-            s.piece_count() * 6,
-            "{}",
-            s.kind()
-        );
-        let mut compared = 0;
-        for (v, uv) in sampled.mesh.uvs.iter().enumerate() {
-            let p = sampled.mesh.positions[v];
-            assert!(
-                (p - Vector3::new(uv.x, uv.y, q.value(*uv))).norm() < 1e-12,
-                "{}: {p} at {uv}",
-                s.kind()
-            );
-            let (k, h) = q.curvature(*uv);
-            assert_near!(sampled.curvature[v].gaussian, k, 1e-9, "{}", s.kind());
-            assert_near!(sampled.curvature[v].mean, h, 1e-9, "{}", s.kind());
-            compared += 1;
+    for _ in 0..4 {
+        let q = Quadric(std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0)));
+        let kinds = every_kind(q, &mut r);
+        let names: std::collections::HashSet<SurfaceKind> =
+            kinds.iter().map(Surface::kind).collect();
+        assert_eq!(names.len(), 8, "one surface of every kind");
+        for s in &kinds {
+            graph_of_quadric_through_the_enum(s, q);
         }
-        assert!(compared >= 6, "{}: only {compared} points", s.kind());
-        // Point evaluation agrees with sampling and names the piece.
-        let uv = sampled.mesh.uvs[sampled.mesh.uvs.len() / 2];
-        let jet = s.jet(uv).unwrap();
-        assert!(jet.piece < s.piece_count());
-        let c = Curvature::from_jet(&jet.jet).unwrap();
-        assert_near!(c.gaussian, q.curvature(uv).0, 1e-9, "{}", s.kind());
-        // Fairness through the pieces: the thin-plate energy of a graph of a quadratic is its
-        // constant density times the domain's area.
-        let f = fairness(s, 6);
-        let area = s.domain().area();
-        assert_near!(
-            f.integrals.thin_plate,
-            q.thin_plate_density() * area,
-            1e-10,
-            "{}",
+    }
+}
+
+/// The accuracy of second derivatives on a piece: they are second differences of Bézier
+/// ordinates divided by the squared height h of the piece, so rounding is of order ε/h²
+/// (the bound of `interrogate::tests`; well-shaped pieces meet 1e-10).
+fn curvature_tolerance(piece: &PieceShape) -> f64 {
+    let h = match piece {
+        PieceShape::Triangle(t) => 2.0 * t.area() / t.diameter(),
+        PieceShape::Rectangle(r) => (r.max.x - r.min.x).min(r.max.y - r.min.y),
+    };
+    1e-10f64.max(32.0 * f64::EPSILON / (h * h))
+}
+
+/// Sampling, point evaluation and fairness of `s`, which represents the graph of `q`,
+/// against the closed forms.
+fn graph_of_quadric_through_the_enum(s: &Surface, q: Quadric) {
+    let sampled = sample_patches(s, 1, true);
+    assert_eq!(
+        sampled.mesh.positions.len(),
+        s.piece_count() * 6,
+        "{}",
+        s.kind()
+    );
+    let mut compared = 0;
+    for (v, uv) in sampled.mesh.uvs.iter().enumerate() {
+        let p = sampled.mesh.positions[v];
+        assert!(
+            (p - Vector3::new(uv.x, uv.y, q.value(*uv))).norm() < 1e-12,
+            "{}: {p} at {uv}",
             s.kind()
         );
-        let pieces: f64 = (0..s.piece_count()).map(|k| s.piece_shape(k).area()).sum();
-        assert_near!(pieces, area, 1e-12, "{}", s.kind());
+        let (k, h) = q.curvature(*uv);
+        let tol = curvature_tolerance(&s.piece_shape(sampled.patch[v] as usize));
+        assert_near!(sampled.curvature[v].gaussian, k, tol, "{}", s.kind());
+        assert_near!(sampled.curvature[v].mean, h, tol, "{}", s.kind());
+        compared += 1;
     }
+    assert!(compared >= 6, "{}: only {compared} points", s.kind());
+    // Point evaluation agrees with sampling and names the piece.
+    let uv = sampled.mesh.uvs[sampled.mesh.uvs.len() / 2];
+    let jet = s.jet(uv).unwrap();
+    assert!(jet.piece < s.piece_count());
+    let c = Curvature::from_jet(&jet.jet).unwrap();
+    let tol = curvature_tolerance(&s.piece_shape(jet.piece));
+    assert_near!(c.gaussian, q.curvature(uv).0, tol, "{}", s.kind());
+    // Fairness through the pieces: the thin-plate energy of a graph of a quadratic is its
+    // constant density times the domain's area.
+    let f = fairness(s, 6);
+    let area = s.domain().area();
+    assert_near!(
+        f.integrals.thin_plate,
+        q.thin_plate_density() * area,
+        1e-10,
+        "{}",
+        s.kind()
+    );
+    let pieces: f64 = (0..s.piece_count()).map(|k| s.piece_shape(k).area()).sum();
+    assert_near!(pieces, area, 1e-12, "{}", s.kind());
 }
 
 /// A changed copy of control point `id` (a free coordinate moved; the weight changed for
@@ -458,13 +480,16 @@ fn rectangular_pieces_are_sampled_and_integrated() {
 
 #[test]
 fn rectangle_quadrature_is_exact_for_its_degree() {
-    let frame = PieceShape::Rectangle(Rectangle::new(
-        Point2::new(-1.0, 0.5),
-        Point2::new(2.0, 1.5),
-    ))
-    .frame()
-    .unwrap();
+    let mut r = rng(1110);
     for degree in 0..8 {
+        let (x0, y0) = (uniform(&mut r, -2.0, 1.0), uniform(&mut r, -2.0, 1.0));
+        let (x1, y1) = (
+            x0 + uniform(&mut r, 0.1, 3.0),
+            y0 + uniform(&mut r, 0.1, 3.0),
+        );
+        let frame = PieceShape::Rectangle(Rectangle::new(Point2::new(x0, y0), Point2::new(x1, y1)))
+            .frame()
+            .unwrap();
         let rule = PieceRule::exact_for(degree);
         for a in 0..=degree {
             for b in 0..=degree {
@@ -475,8 +500,8 @@ fn rectangle_quadrature_is_exact_for_its_degree() {
                     .sum();
                 let int =
                     |lo: f64, hi: f64, k: i32| (hi.powi(k + 1) - lo.powi(k + 1)) / (k + 1) as f64;
-                let exact = int(-1.0, 2.0, a as i32) * int(0.5, 1.5, b as i32);
-                assert_near!(q, exact, 1e-13, "degree {degree}: x^{a} y^{b}");
+                let exact = int(x0, x1, a as i32) * int(y0, y1, b as i32);
+                assert_near!(q, exact, 1e-12, "degree {degree}: x^{a} y^{b}");
             }
         }
     }
