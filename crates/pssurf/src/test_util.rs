@@ -162,27 +162,21 @@ pub mod meshes {
 
     /// A non-convex L-shaped domain with a jittered interior (walks may hit the boundary).
     pub fn l_shape(r: &mut ChaCha8Rng, k: usize) -> Triangulation {
-        let full = structured(r, k);
         let half = k as f64 / 2.0;
-        let keep: Vec<[usize; 3]> = full
-            .triangles()
-            .iter()
-            .filter(|t| {
-                let c = t.iter().fold(Point2::origin(), |acc: Point2<f64>, &v| {
-                    acc + full.vertex(v as usize).coords / 3.0
-                });
-                !(c.x > half && c.y > half)
-            })
-            .map(|t| t.map(|v| v as usize))
-            .collect();
-        compact(full.vertices(), &keep)
+        without(&structured(r, k), |c| c.x > half && c.y > half)
     }
 
     /// A square domain with a square hole (the middle ninth) and a jittered interior: two
     /// boundary loops.
     pub fn holed(r: &mut ChaCha8Rng, k: usize) -> Triangulation {
-        let full = structured(r, 3 * k);
         let (lo, hi) = (k as f64, 2.0 * k as f64);
+        without(&structured(r, 3 * k), |c| {
+            c.x > lo && c.x < hi && c.y > lo && c.y < hi
+        })
+    }
+
+    /// `full` without the triangles whose centroid satisfies `drop`.
+    fn without(full: &Triangulation, drop: impl Fn(Point2<f64>) -> bool) -> Triangulation {
         let keep: Vec<[usize; 3]> = full
             .triangles()
             .iter()
@@ -190,7 +184,7 @@ pub mod meshes {
                 let c = t.iter().fold(Point2::origin(), |acc: Point2<f64>, &v| {
                     acc + full.vertex(v as usize).coords / 3.0
                 });
-                !(c.x > lo && c.x < hi && c.y > lo && c.y < hi)
+                !drop(c)
             })
             .map(|t| t.map(|v| v as usize))
             .collect();
