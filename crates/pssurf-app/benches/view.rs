@@ -53,7 +53,7 @@ fn app(mode: ViewMode) -> App {
         },
         None,
     );
-    app.display.mode = mode;
+    app.view.display.mode = mode;
     app.update_geometry();
     app.frame_all(1.6);
     app
@@ -92,7 +92,7 @@ fn drag_step(c: &mut Criterion) {
         let vertices = pssurf_app::edit::vertex_count(&app.doc.scene.objects[0].surface);
         assert!(vertices >= 100_000, "{vertices} vertices");
         let mut renderer = ViewRenderer::new(&device);
-        renderer.upload(&device, &queue, &app.cache.geometry);
+        renderer.upload(&device, &queue, &app.runtime.cache.geometry);
         wait(&device, &queue);
         let mut step = 0usize;
         g.bench_function(format!("edit+retessellate+upload/{name}"), |b| {
@@ -102,7 +102,7 @@ fn drag_step(c: &mut Criterion) {
                 let mut c = vertex_control(&app.doc.scene.objects[0].surface, v);
                 c.points[0].z += 1e-3;
                 app.drag_vertex(0, v, c).expect("edit");
-                renderer.upload(&device, &queue, &app.cache.geometry);
+                renderer.upload(&device, &queue, &app.runtime.cache.geometry);
                 wait(&device, &queue);
             })
         });
@@ -121,7 +121,7 @@ fn drag_step(c: &mut Criterion) {
         b.iter(|| {
             app.doc.scene.objects[0].touch();
             app.update_geometry();
-            renderer.upload(&device, &queue, &app.cache.geometry);
+            renderer.upload(&device, &queue, &app.runtime.cache.geometry);
             wait(&device, &queue);
         })
     });
@@ -131,11 +131,11 @@ fn drag_step(c: &mut Criterion) {
 fn frame(c: &mut Criterion) {
     let (device, queue) = device();
     let app = app(ViewMode::Shaded);
-    let triangles = app.cache.geometry.indices.len() / 3;
+    let triangles = app.runtime.cache.geometry.indices.len() / 3;
     let mut renderer = ViewRenderer::new(&device);
-    renderer.upload(&device, &queue, &app.cache.geometry);
+    renderer.upload(&device, &queue, &app.runtime.cache.geometry);
     let size = [1600, 1000];
-    let u = uniforms(&app, size);
+    let u = uniforms(&app.view, size);
     let mut g = c.benchmark_group("app_frame");
     g.sample_size(10);
     g.throughput(Throughput::Elements(triangles as u64));

@@ -4,7 +4,8 @@
 use nalgebra::{Matrix4, Point3, Vector3};
 
 /// An orbit camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct OrbitCamera {
     /// The point looked at.
     pub target: Vector3<f32>,

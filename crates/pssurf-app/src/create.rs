@@ -7,17 +7,8 @@ use pssurf::expr::HeightFunction;
 use pssurf::surface::Surface;
 use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface_from_formula};
 
-use crate::app::{App, Selection};
+use crate::command::{Command, FrameTarget, Shape, ViewContext};
 use crate::scene::SceneObject;
-
-/// What the dialog makes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shape {
-    /// z = the formula.
-    Formula,
-    /// z = a x² + b xy + c y².
-    Quadric,
-}
 
 /// The dialog's state.
 #[derive(Clone, Debug, PartialEq)]
@@ -124,114 +115,112 @@ fn grid_bounds(grid: &UpsGrid) -> (Point2<f64>, Point2<f64>) {
     (lo, hi)
 }
 
-/// Adds the dialog's surface to the scene as one undoable edit and selects it.
-pub fn create(app: &mut App) {
-    let d = &mut app.new_surface;
-    let surface = match d.build() {
-        Ok(s) => s,
-        Err(e) => {
-            d.error = Some(e);
+impl NewSurface {
+    /// Opens the dialog on a shape.
+    pub fn open(&mut self, shape: Shape) {
+        self.shape = shape;
+        self.open = true;
+    }
+
+    /// Asks to add the dialog's surface to the scene (one undoable edit, selected and
+    /// framed) and closes the dialog; a problem stays in the dialog instead.
+    pub fn create(&mut self, cx: &mut ViewContext<'_>) {
+        let surface = match self.build() {
+            Ok(s) => s,
+            Err(e) => {
+                self.error = Some(e);
+                return;
+            }
+        };
+        self.error = None;
+        self.open = false;
+        cx.emit(Command::Add(SceneObject::new(self.name(), surface)));
+        cx.emit(Command::Frame(FrameTarget::All));
+    }
+
+    /// Draws the dialog when open.
+    pub fn window(&mut self, ctx: &egui::Context, cx: &mut ViewContext<'_>) {
+        if !self.open {
             return;
         }
-    };
-    d.error = None;
-    d.open = false;
-    let object = SceneObject::new(d.name(), surface);
-    let name = object.name.clone();
-    let added = app.doc.edit("new surface", |scene| {
-        scene.objects.push(object);
-        Ok::<(), String>(())
-    });
-    if added.is_ok() {
-        app.selection = Selection {
-            object: Some(app.doc.scene.objects.len() - 1),
-            vertex: None,
-        };
-        app.vertex_edit = None;
-        app.frame_pending = true;
-        app.status = format!("created {name}");
+        let mut open = true;
+        let mut go = false;
+        egui::Window::new("New surface")
+            .open(&mut open)
+            .resizable(false)
+            .show(ctx, |ui| go = self.fields(ui));
+        if go {
+            self.create(cx);
+        }
+        if !open {
+            self.open = false;
+        }
     }
-}
 
-/// Draws the dialog when open.
-pub fn window(app: &mut App, ctx: &egui::Context) {
-    if !app.new_surface.open {
-        return;
-    }
-    let mut open = true;
-    let mut go = false;
-    egui::Window::new("New surface")
-        .open(&mut open)
-        .resizable(false)
-        .show(ctx, |ui| {
-            let d = &mut app.new_surface;
-            ui.horizontal(|ui| {
-                ui.radio_value(&mut d.shape, Shape::Formula, "height formula");
-                ui.radio_value(&mut d.shape, Shape::Quadric, "quadric");
-            });
-            egui::Grid::new("new surface")
-                .num_columns(2)
-                .show(ui, |ui| {
-                    ui.label("polygon");
-                    egui::ComboBox::from_label("sides")
-                        .selected_text(format!("{} sides", d.sides))
-                        .show_ui(ui, |ui| {
-                            for n in 3..=6 {
-                                ui.selectable_value(&mut d.sides, n, format!("{n} sides"));
-                            }
-                        });
-                    ui.end_row();
-                    let l = ui.label("triangles per side");
-                    ui.add(egui::DragValue::new(&mut d.size).range(1..=200))
-                        .labelled_by(l.id);
-                    ui.end_row();
-                    let l = ui.label("side length");
-                    ui.add(
-                        egui::DragValue::new(&mut d.side_length)
-                            .speed(0.01)
-                            .range(1e-6..=1e6),
-                    )
+    /// The dialog's fields; returns whether Create was clicked.
+    fn fields(&mut self, ui: &mut egui::Ui) -> bool {
+        let d = self;
+        ui.horizontal(|ui| {
+            ui.radio_value(&mut d.shape, Shape::Formula, "height formula");
+            ui.radio_value(&mut d.shape, Shape::Quadric, "quadric");
+        });
+        egui::Grid::new("new surface")
+            .num_columns(2)
+            .show(ui, |ui| {
+                ui.label("polygon");
+                egui::ComboBox::from_label("sides")
+                    .selected_text(format!("{} sides", d.sides))
+                    .show_ui(ui, |ui| {
+                        for n in 3..=6 {
+                            ui.selectable_value(&mut d.sides, n, format!("{n} sides"));
+                        }
+                    });
+                ui.end_row();
+                let l = ui.label("triangles per side");
+                ui.add(egui::DragValue::new(&mut d.size).range(1..=200))
                     .labelled_by(l.id);
-                    ui.end_row();
-                    match d.shape {
-                        Shape::Formula => {
-                            let l = ui.label("z =");
-                            ui.text_edit_singleline(&mut d.formula)
-                                .labelled_by(l.id)
-                                .on_hover_text(
-                                    "x, y, numbers, + - * / ^, sin cos tan exp ln sqrt abs, PI, E",
-                                );
+                ui.end_row();
+                let l = ui.label("side length");
+                ui.add(
+                    egui::DragValue::new(&mut d.side_length)
+                        .speed(0.01)
+                        .range(1e-6..=1e6),
+                )
+                .labelled_by(l.id);
+                ui.end_row();
+                match d.shape {
+                    Shape::Formula => {
+                        let l = ui.label("z =");
+                        ui.text_edit_singleline(&mut d.formula)
+                            .labelled_by(l.id)
+                            .on_hover_text(
+                                "x, y, numbers, + - * / ^, sin cos tan exp ln sqrt abs, PI, E",
+                            );
+                        ui.end_row();
+                    }
+                    Shape::Quadric => {
+                        for (k, name) in ["a (x²)", "b (xy)", "c (y²)"].iter().enumerate() {
+                            let l = ui.label(*name);
+                            ui.add(egui::DragValue::new(&mut d.quadric[k]).speed(0.01))
+                                .labelled_by(l.id);
                             ui.end_row();
                         }
-                        Shape::Quadric => {
-                            for (k, name) in ["a (x²)", "b (xy)", "c (y²)"].iter().enumerate() {
-                                let l = ui.label(*name);
-                                ui.add(egui::DragValue::new(&mut d.quadric[k]).speed(0.01))
-                                    .labelled_by(l.id);
-                                ui.end_row();
-                            }
-                        }
                     }
-                    ui.label("kind");
-                    ui.horizontal(|ui| {
-                        ui.radio_value(&mut d.kind, GraphKind::Parametric, "parametric");
-                        ui.radio_value(&mut d.kind, GraphKind::Functional, "functional");
-                        ui.radio_value(&mut d.kind, GraphKind::Rational, "NURPS");
-                    });
-                    ui.end_row();
+                }
+                ui.label("kind");
+                ui.horizontal(|ui| {
+                    ui.radio_value(&mut d.kind, GraphKind::Parametric, "parametric");
+                    ui.radio_value(&mut d.kind, GraphKind::Functional, "functional");
+                    ui.radio_value(&mut d.kind, GraphKind::Rational, "NURPS");
                 });
-            if d.shape == Shape::Quadric {
-                ui.weak(format!("z = {}", d.height()));
-            }
-            if let Some(e) = &d.error {
-                ui.colored_label(egui::Color32::from_rgb(190, 30, 30), e);
-            }
-            go = ui.button("Create").clicked();
-        });
-    if go {
-        create(app);
-    }
-    if !open {
-        app.new_surface.open = false;
+                ui.end_row();
+            });
+        if d.shape == Shape::Quadric {
+            ui.weak(format!("z = {}", d.height()));
+        }
+        if let Some(e) = &d.error {
+            ui.colored_label(egui::Color32::from_rgb(190, 30, 30), e);
+        }
+        ui.button("Create").clicked()
     }
 }

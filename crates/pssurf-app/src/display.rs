@@ -18,8 +18,9 @@ use pssurf_viz::plot::{
 use crate::edit;
 use crate::scene::{Material, SceneObject};
 
-/// What colours the surface.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// What colours the surface (saved by its [`ViewMode::key`]).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "String", try_from = "String")]
 pub enum ViewMode {
     /// Lit, neutral material.
     Shaded,
@@ -32,8 +33,63 @@ pub enum ViewMode {
     Wireframe,
 }
 
+impl ViewMode {
+    /// The short key used on the command line and in saved settings: shaded, zebra,
+    /// wireframe, or a curvature quantity's short name (K, H, k1, k2, kabs).
+    pub fn key(self) -> &'static str {
+        match self {
+            ViewMode::Shaded => "shaded",
+            ViewMode::Zebra => "zebra",
+            ViewMode::Wireframe => "wireframe",
+            ViewMode::Curvature(q) => q.short_name(),
+        }
+    }
+
+    /// The mode with this [`ViewMode::key`].
+    pub fn parse(key: &str) -> Result<ViewMode, String> {
+        Ok(match key {
+            "shaded" => ViewMode::Shaded,
+            "zebra" => ViewMode::Zebra,
+            "wireframe" => ViewMode::Wireframe,
+            q => ViewMode::Curvature(CurvatureQuantity::parse(q).ok_or_else(|| {
+                format!(
+                    "unknown view mode `{q}`: use shaded, zebra, wireframe, K, H, k1, k2 or kabs"
+                )
+            })?),
+        })
+    }
+
+    /// The name shown in the interface and over the legend.
+    pub fn name(self) -> &'static str {
+        match self {
+            ViewMode::Shaded => "shaded",
+            ViewMode::Zebra => "zebra stripes",
+            ViewMode::Wireframe => "wireframe",
+            ViewMode::Curvature(CurvatureQuantity::Gaussian) => "Gaussian curvature K",
+            ViewMode::Curvature(CurvatureQuantity::Mean) => "mean curvature H",
+            ViewMode::Curvature(CurvatureQuantity::K1) => "κ1",
+            ViewMode::Curvature(CurvatureQuantity::K2) => "κ2",
+            ViewMode::Curvature(CurvatureQuantity::Absolute) => "absolute curvature",
+        }
+    }
+}
+
+impl From<ViewMode> for String {
+    fn from(m: ViewMode) -> String {
+        m.key().to_string()
+    }
+}
+
+impl TryFrom<String> for ViewMode {
+    type Error = String;
+    fn try_from(key: String) -> Result<ViewMode, String> {
+        ViewMode::parse(&key)
+    }
+}
+
 /// The view's display settings.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct DisplaySettings {
     /// Shaded, curvature or zebra.
     pub mode: ViewMode,
@@ -76,7 +132,8 @@ impl Default for DisplaySettings {
 }
 
 /// The directional light of the shaded view.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct Light {
     /// Fixed to the camera (from above left of the eye) instead of to the scene.
     pub headlight: bool,

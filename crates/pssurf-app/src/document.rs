@@ -1,4 +1,13 @@
-//! The open document: the scene, its file, and undo/redo of every edit.
+//! The open document: the scene, what is selected in it, its file, and undo/redo of every
+//! edit.
+//!
+//! A history step is a snapshot of the scene taken before the edit. Surfaces are shared
+//! (`Arc`), so a snapshot copies pointers and names, not control nets; an edit copies the one
+//! surface it changes (copy on write, [`SceneObject::surface_mut`]). Undo swaps the snapshot
+//! back with the revisions it had: objects the edit did not touch keep theirs, so the display
+//! cache keeps their meshes and re-samples only what changed.
+//!
+//! [`SceneObject::surface_mut`]: crate::scene::SceneObject::surface_mut
 
 use std::path::PathBuf;
 
@@ -7,24 +16,58 @@ use crate::scene::Scene;
 /// How many edits can be undone.
 pub const UNDO_DEPTH: usize = 200;
 
-/// The scene being edited, with its history.
+/// What is selected.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Selection {
+    /// The selected object.
+    pub object: Option<usize>,
+    /// The selected vertex (control group) of that object.
+    pub vertex: Option<usize>,
+}
+
+impl Selection {
+    /// Object `i`, no vertex.
+    pub fn object(i: usize) -> Self {
+        Selection {
+            object: Some(i),
+            vertex: None,
+        }
+    }
+}
+
+/// One undo or redo step: the scene as it was, and the edit's name for the Edit menu.
+#[derive(Debug)]
+struct Step {
+    name: String,
+    scene: Scene,
+}
+
+/// The scene being edited, with its selection and history.
 #[derive(Debug, Default)]
 pub struct Document {
     /// The current scene.
     pub scene: Scene,
+    /// What is selected in it.
+    pub selection: Selection,
     /// Where it was loaded from or last saved to.
     pub path: Option<PathBuf>,
     /// Whether it changed since it was loaded or saved.
     pub dirty: bool,
-    undo: Vec<(String, Scene)>,
-    redo: Vec<(String, Scene)>,
+    undo: Vec<Step>,
+    redo: Vec<Step>,
 }
 
 impl Document {
-    /// A document for a scene.
+    /// A document for a scene, with its first object selected.
     pub fn new(scene: Scene, path: Option<PathBuf>) -> Self {
+        let selection = if scene.objects.is_empty() {
+            Selection::default()
+        } else {
+            Selection::object(0)
+        };
         Document {
             scene,
+            selection,
             path,
             ..Default::default()
         }
@@ -40,11 +83,7 @@ impl Document {
         let before = self.scene.clone();
         match f(&mut self.scene) {
             Ok(()) => {
-                self.undo.push((what.to_string(), before));
-                if self.undo.len() > UNDO_DEPTH {
-                    self.undo.remove(0);
-                }
-                self.redo.clear();
+                self.push_undo(what, before);
                 self.dirty = true;
                 Ok(())
             }
@@ -64,46 +103,69 @@ impl Document {
 
     /// Records the current scene as an undo step named `what` (the start of a drag).
     pub fn checkpoint(&mut self, what: &str) {
-        self.undo.push((what.to_string(), self.scene.clone()));
+        self.push_undo(what, self.scene.clone());
+    }
+
+    fn push_undo(&mut self, what: &str, scene: Scene) {
+        self.undo.push(Step {
+            name: what.to_string(),
+            scene,
+        });
+        if self.undo.len() > UNDO_DEPTH {
+            self.undo.remove(0);
+        }
         self.redo.clear();
     }
 
     /// The name of the edit that undo would revert.
     pub fn undo_name(&self) -> Option<&str> {
-        self.undo.last().map(|(n, _)| n.as_str())
+        self.undo.last().map(|s| s.name.as_str())
     }
 
     /// The name of the edit that redo would repeat.
     pub fn redo_name(&self) -> Option<&str> {
-        self.redo.last().map(|(n, _)| n.as_str())
+        self.redo.last().map(|s| s.name.as_str())
     }
 
     /// Reverts the last edit; false when there is none.
     pub fn undo(&mut self) -> bool {
-        self.swap(true)
+        let moved = Self::swap(&mut self.scene, &mut self.undo, &mut self.redo);
+        self.after_history(moved)
     }
 
     /// Repeats the last undone edit; false when there is none.
     pub fn redo(&mut self) -> bool {
-        self.swap(false)
+        let moved = Self::swap(&mut self.scene, &mut self.redo, &mut self.undo);
+        self.after_history(moved)
     }
 
-    fn swap(&mut self, undo: bool) -> bool {
-        let (from, to) = if undo {
-            (&mut self.undo, &mut self.redo)
-        } else {
-            (&mut self.redo, &mut self.undo)
-        };
-        let Some((name, mut scene)) = from.pop() else {
+    /// Moves the last step of `from` into the scene, and the scene into `to`.
+    fn swap(scene: &mut Scene, from: &mut Vec<Step>, to: &mut Vec<Step>) -> bool {
+        let Some(mut step) = from.pop() else {
             return false;
         };
-        std::mem::swap(&mut scene, &mut self.scene);
-        to.push((name, scene));
-        // Caches key on revisions: give every object a new one.
-        for o in &mut self.scene.objects {
-            o.touch();
+        std::mem::swap(&mut step.scene, scene);
+        to.push(step);
+        true
+    }
+
+    /// Keeps the selection inside the restored scene.
+    fn after_history(&mut self, moved: bool) -> bool {
+        if !moved {
+            return false;
         }
         self.dirty = true;
+        let objects = &self.scene.objects;
+        match self.selection.object.map(|i| objects.get(i)) {
+            Some(None) => self.selection = Selection::default(),
+            Some(Some(o)) => {
+                let groups = crate::edit::vertex_count(&o.surface);
+                if self.selection.vertex.is_some_and(|v| v >= groups) {
+                    self.selection.vertex = None;
+                }
+            }
+            None => {}
+        }
         true
     }
 }

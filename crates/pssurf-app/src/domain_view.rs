@@ -5,7 +5,8 @@ use egui::{Color32, Pos2, Rect, Sense, Shape, Stroke, pos2, vec2};
 use nalgebra::Point2;
 use pssurf::ps::PsBasis;
 
-use crate::app::{App, Selection};
+use crate::command::{Command, ViewContext};
+use crate::document::Selection;
 
 /// Above this many triangles only the boundary and the selection are drawn.
 const DETAIL_LIMIT: usize = 20_000;
@@ -64,31 +65,60 @@ pub fn pick_vertex(basis: &PsBasis, p: Point2<f64>, radius: f64) -> Option<usize
     })
 }
 
-/// Draws the domain view of the selected object and handles clicks.
-pub fn ui(app: &mut App, ui: &mut egui::Ui) {
-    let size = vec2(ui.available_width(), ui.available_width().min(320.0));
-    let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
-    let response = response.on_hover_text(
-        "Click a PS-triangle to select its vertex; Shift+click or Shift+drag moves the probe",
-    );
-    response.widget_info(|| {
-        egui::WidgetInfo::labeled(egui::accesskit::Role::Canvas, true, "domain view")
-    });
-    let painter = ui.painter_at(rect);
-    painter.rect_filled(rect, 2.0, Color32::from_gray(250));
-    let Some(i) = app
-        .selection
-        .object
-        .filter(|&i| i < app.doc.scene.objects.len())
-    else {
-        return centered_message(&painter, rect, "no object selected");
-    };
-    let Some(basis) = app.doc.scene.objects[i].surface.ps_basis().cloned() else {
-        return centered_message(&painter, rect, "the domain view shows PS surfaces");
-    };
+/// The domain view.
+#[derive(Debug, Default)]
+pub struct DomainView;
+
+impl DomainView {
+    /// Draws the domain view of the selected object; clicks go to `cx` as commands.
+    pub fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
+        let size = vec2(ui.available_width(), ui.available_width().min(320.0));
+        let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
+        let response = response.on_hover_text(
+            "Click a PS-triangle to select its vertex; Shift+click or Shift+drag moves the probe",
+        );
+        response.widget_info(|| {
+            egui::WidgetInfo::labeled(egui::accesskit::Role::Canvas, true, "domain view")
+        });
+        let painter = ui.painter_at(rect);
+        painter.rect_filled(rect, 2.0, Color32::from_gray(250));
+        let Some(i) = cx.selected() else {
+            return centered_message(&painter, rect, "no object selected");
+        };
+        let Some(basis) = cx.doc.scene.objects[i].surface.ps_basis() else {
+            return centered_message(&painter, rect, "the domain view shows PS surfaces");
+        };
+        let (lo, hi) = basis.triangulation().bounds();
+        let map = DomainMap::new(lo, hi, rect);
+        let mut shapes = triangulation_shapes(basis, &map);
+        if let Some(v) = cx.doc.selection.vertex {
+            shapes.extend(selection_shapes(basis, &map, v));
+        }
+        if let Some(p) = cx.probe().filter(|p| p.object == i) {
+            shapes.push(Shape::circle_stroke(
+                map.to_screen(p.uv),
+                5.0,
+                Stroke::new(2.0, Color32::BLACK),
+            ));
+        }
+        painter.extend(shapes);
+        let shift = ui.input(|inp| inp.modifiers.shift);
+        if let Some(command) = click_command(&response, shift, basis, &map, i) {
+            if let Command::Select(s) = &command {
+                cx.status(match s.vertex {
+                    Some(v) => format!("selected vertex {v}"),
+                    None => "no PS-triangle there".into(),
+                });
+            }
+            cx.emit(command);
+        }
+    }
+}
+
+/// The triangulation's edges (only the boundary above [`DETAIL_LIMIT`] triangles) and, for
+/// small triangulations, the PS refinement's split lines.
+fn triangulation_shapes(basis: &PsBasis, map: &DomainMap) -> Vec<Shape> {
     let tri = basis.triangulation();
-    let (lo, hi) = tri.bounds();
-    let map = DomainMap::new(lo, hi, rect);
     let detailed = tri.triangle_count() <= DETAIL_LIMIT;
     let edge = Stroke::new(1.0, Color32::from_gray(90));
     let split = Stroke::new(0.5, Color32::from_rgb(70, 110, 210));
@@ -120,56 +150,61 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
             }
         }
     }
-    if let Some(v) = app.selection.vertex.filter(|&v| v < tri.vertex_count()) {
-        let t = basis.ps_triangle(v);
-        let pts: Vec<Pos2> = t.v.iter().map(|p| map.to_screen(*p)).collect();
-        shapes.push(Shape::convex_polygon(
-            pts.clone(),
-            Color32::from_rgba_unmultiplied(255, 140, 0, 50),
-            Stroke::new(2.0, Color32::from_rgb(230, 110, 0)),
-        ));
-        for p in pssurf::ps::ps_triangles::ps_points(tri, basis.refinement(), v) {
-            shapes.push(Shape::circle_filled(
-                map.to_screen(p),
-                2.5,
-                Color32::from_rgb(200, 40, 40),
-            ));
-        }
+    shapes
+}
+
+/// The PS-triangle of vertex `v` with its PS-points (none if there is no such vertex).
+fn selection_shapes(basis: &PsBasis, map: &DomainMap, v: usize) -> Vec<Shape> {
+    let tri = basis.triangulation();
+    if v >= tri.vertex_count() {
+        return Vec::new();
+    }
+    let t = basis.ps_triangle(v);
+    let pts: Vec<Pos2> = t.v.iter().map(|p| map.to_screen(*p)).collect();
+    let mut shapes = vec![Shape::convex_polygon(
+        pts,
+        Color32::from_rgba_unmultiplied(255, 140, 0, 50),
+        Stroke::new(2.0, Color32::from_rgb(230, 110, 0)),
+    )];
+    for p in pssurf::ps::ps_triangles::ps_points(tri, basis.refinement(), v) {
         shapes.push(Shape::circle_filled(
-            map.to_screen(tri.vertex(v)),
-            4.0,
-            Color32::from_rgb(230, 110, 0),
+            map.to_screen(p),
+            2.5,
+            Color32::from_rgb(200, 40, 40),
         ));
     }
-    if let Some(p) = app.probe.as_ref().filter(|p| p.object == i) {
-        shapes.push(Shape::circle_stroke(
-            map.to_screen(p.uv),
-            5.0,
-            Stroke::new(2.0, Color32::BLACK),
-        ));
+    shapes.push(Shape::circle_filled(
+        map.to_screen(tri.vertex(v)),
+        4.0,
+        Color32::from_rgb(230, 110, 0),
+    ));
+    shapes
+}
+
+/// What a click asks for: with Shift, the probe at the clicked point; else the vertex whose
+/// PS-triangle was clicked.
+fn click_command(
+    response: &egui::Response,
+    shift: bool,
+    basis: &PsBasis,
+    map: &DomainMap,
+    object: usize,
+) -> Option<Command> {
+    let pos = response.interact_pointer_pos()?;
+    if shift && (response.clicked() || response.dragged()) {
+        return Some(Command::SetProbe {
+            object,
+            uv: map.to_domain(pos),
+        });
     }
-    painter.extend(shapes);
-    let shift = ui.input(|inp| inp.modifiers.shift);
-    if shift
-        && (response.clicked() || response.dragged())
-        && let Some(pos) = response.interact_pointer_pos()
-    {
-        app.set_probe(i, map.to_domain(pos));
-    } else if response.clicked()
-        && let Some(pos) = response.interact_pointer_pos()
-    {
-        let p = map.to_domain(pos);
-        let picked = pick_vertex(&basis, p, 15.0 / map.scale);
-        app.selection = Selection {
-            object: Some(i),
-            vertex: picked,
-        };
-        app.vertex_edit = None;
-        app.status = match picked {
-            Some(v) => format!("selected vertex {v}"),
-            None => "no PS-triangle there".into(),
-        };
+    if !response.clicked() {
+        return None;
     }
+    let vertex = pick_vertex(basis, map.to_domain(pos), 15.0 / map.scale);
+    Some(Command::Select(Selection {
+        object: Some(object),
+        vertex,
+    }))
 }
 
 /// A grey message in the middle of the view.

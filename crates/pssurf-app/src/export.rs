@@ -9,17 +9,12 @@ use pssurf::interrogate::{CurvatureQuantity, sample_patches};
 use pssurf::io::{Durability, atomic_write, atomic_write_bytes};
 use pssurf_viz::{FieldMesh, MeshFormat, write_mesh};
 
-use crate::app::App;
-use crate::display::{ViewMode, display_level};
-
-/// What to export.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum What {
-    /// The selected object's mesh.
-    Mesh,
-    /// The 3D view as a PNG picture.
-    Picture,
-}
+use crate::cache::GeometryCache;
+use crate::command::{Command, ExportKind, ViewContext};
+use crate::display::{DisplaySettings, ViewMode, display_level};
+use crate::document::Document;
+use crate::runtime::Runtime;
+use crate::state::ViewState;
 
 /// The dialog's state.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,7 +22,7 @@ pub struct ExportDialog {
     /// Whether the window is open.
     pub open: bool,
     /// Mesh or picture.
-    pub what: What,
+    pub what: ExportKind,
     /// The mesh format.
     pub format: MeshFormat,
     /// The picture's size in pixels.
@@ -40,7 +35,7 @@ impl Default for ExportDialog {
     fn default() -> Self {
         ExportDialog {
             open: false,
-            what: What::Mesh,
+            what: ExportKind::Mesh,
             format: MeshFormat::Ply,
             size: [1600, 1000],
             path: String::new(),
@@ -59,8 +54,8 @@ const FORMATS: [(MeshFormat, &str); 5] = [
 
 fn extension(d: &ExportDialog) -> &'static str {
     match d.what {
-        What::Picture => "png",
-        What::Mesh => FORMATS
+        ExportKind::Picture => "png",
+        ExportKind::Mesh => FORMATS
             .iter()
             .find(|(f, _)| *f == d.format)
             .map_or("ply", |(_, e)| e),
@@ -68,39 +63,45 @@ fn extension(d: &ExportDialog) -> &'static str {
 }
 
 /// A file name next to the scene file, from the object's name.
-fn suggested_path(app: &App) -> String {
-    let dir = app
-        .doc
+fn suggested_path(d: &ExportDialog, doc: &Document) -> String {
+    let dir = doc
         .path
         .as_ref()
         .and_then(|p| p.parent())
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let stem = match app.export.what {
-        What::Picture => "view".to_string(),
-        What::Mesh => app
+    let stem = match d.what {
+        ExportKind::Picture => "view".to_string(),
+        ExportKind::Mesh => doc
             .selection
             .object
-            .and_then(|i| app.doc.scene.objects.get(i))
+            .and_then(|i| doc.scene.objects.get(i))
             .map_or("surface".into(), |o| {
                 o.name.replace(|c: char| !c.is_alphanumeric(), "_")
             }),
     };
-    dir.join(format!("{stem}.{}", extension(&app.export)))
+    dir.join(format!("{stem}.{}", extension(d)))
         .display()
         .to_string()
 }
 
 /// Writes the selected object's mesh in scene placement: points and normals transformed,
-/// all five curvature fields (in scene units), and the plot's colours in a curvature plot.
-pub fn export_mesh(app: &App, path: &Path, format: MeshFormat) -> Result<(), String> {
-    let i = app
+/// all five curvature fields (in scene units), and the plot's colours (from `cache`) in a
+/// curvature plot.
+pub fn export_mesh(
+    doc: &Document,
+    display: &DisplaySettings,
+    cache: &GeometryCache,
+    path: &Path,
+    format: MeshFormat,
+) -> Result<(), String> {
+    let i = doc
         .selection
         .object
-        .filter(|&i| i < app.doc.scene.objects.len())
+        .filter(|&i| i < doc.scene.objects.len())
         .ok_or("select an object to export")?;
-    let o = &app.doc.scene.objects[i];
-    let level = display_level(o, &app.display);
+    let o = &doc.scene.objects[i];
+    let level = display_level(o, display);
     let mut sampled = sample_patches(&o.surface, level, true);
     let m = o.transform.matrix();
     let rotation = m.fixed_view::<3, 3>(0, 0).into_owned() / o.transform.scale;
@@ -131,9 +132,9 @@ pub fn export_mesh(app: &App, path: &Path, format: MeshFormat) -> Result<(), Str
         })
         .collect();
     // The plot's colours, when the view shows one (the cached mesh has the same layout).
-    let colors: Option<Vec<[u8; 3]>> = match app.display.mode {
-        ViewMode::Curvature(_) => app
-            .object_mesh(i)
+    let colors: Option<Vec<[u8; 3]>> = match display.mode {
+        ViewMode::Curvature(_) => cache
+            .object_mesh(&doc.scene, i)
             .filter(|mesh| mesh.vertices.len() == sampled.mesh.positions.len())
             .map(|mesh| {
                 mesh.vertices
@@ -160,32 +161,39 @@ pub fn export_mesh(app: &App, path: &Path, format: MeshFormat) -> Result<(), Str
 
 /// Renders the 3D view (camera direction, light, mode, probe lines; without the egui legend)
 /// at `size`, with the visible objects framed to fill the picture, and writes it as PNG.
-pub fn export_picture(app: &mut App, path: &Path, size: [u32; 2]) -> Result<(), String> {
+pub fn export_picture(
+    runtime: &mut Runtime,
+    doc: &Document,
+    view: &ViewState,
+    path: &Path,
+    size: [u32; 2],
+) -> Result<(), String> {
     if !(16..=8192).contains(&size[0]) || !(16..=8192).contains(&size[1]) {
         return Err("the picture must be between 16 and 8192 pixels on each side".into());
     }
-    let state = app
-        .render_state
+    let state = runtime
+        .gpu
         .clone()
         .ok_or("pictures need the wgpu renderer")?;
-    app.update_geometry();
-    app.refresh_probe();
-    let on_screen = app.camera;
-    if let Some((lo, hi)) = crate::display::bounds(
-        app.cache
-            .ranges
-            .iter()
-            .filter_map(|r| app.object_mesh(r.object)),
-    ) {
-        app.camera.frame(lo, hi, size[0] as f32 / size[1] as f32);
+    let cache = &mut runtime.cache;
+    cache.update(&doc.scene, &view.display);
+    runtime
+        .probe
+        .refresh(&doc.scene, &view.probe, cache.scene_size());
+    let mut framed = view.clone();
+    let drawn = cache
+        .ranges
+        .iter()
+        .filter_map(|r| cache.object_mesh(&doc.scene, r.object));
+    if let Some((lo, hi)) = crate::display::bounds(drawn) {
+        framed.camera.frame(lo, hi, size[0] as f32 / size[1] as f32);
     }
-    let uniforms = crate::view3d::uniforms(app, size);
-    app.camera = on_screen;
+    let uniforms = crate::view3d::uniforms(&framed, size);
     let picture = crate::gpu::render_picture(
         &state.device,
         &state.queue,
-        &app.cache.geometry,
-        &app.probe_lines,
+        &cache.geometry,
+        &runtime.probe.lines,
         &uniforms,
         size,
     )?;
@@ -196,91 +204,95 @@ pub fn export_picture(app: &mut App, path: &Path, size: [u32; 2]) -> Result<(), 
     atomic_write_bytes(path, Durability::Atomic, &png).map_err(|e| e.to_string())
 }
 
-/// Runs the export the dialog describes.
-pub fn run(app: &mut App) {
-    let path = PathBuf::from(app.export.path.trim());
-    if path.as_os_str().is_empty() {
-        app.error = Some("Give a file name to export to.".into());
-        return;
-    }
-    let result = match app.export.what {
-        What::Mesh => export_mesh(app, &path, app.export.format),
-        What::Picture => export_picture(app, &path, app.export.size),
-    };
-    match result {
-        Ok(()) => {
-            app.status = format!("wrote {}", path.display());
-            app.export.open = false;
+impl ExportDialog {
+    /// The command that runs the export the dialog describes (an error when no file is
+    /// given).
+    pub fn command(&self) -> Command {
+        let path = PathBuf::from(self.path.trim());
+        if path.as_os_str().is_empty() {
+            return Command::Error("Give a file name to export to.".into());
         }
-        Err(e) => app.error = Some(format!("Could not export.\n\n{e}")),
+        match self.what {
+            ExportKind::Mesh => Command::ExportMesh {
+                path,
+                format: self.format,
+            },
+            ExportKind::Picture => Command::ExportPicture {
+                path,
+                size: self.size,
+            },
+        }
     }
-}
 
-/// Opens the dialog with a suggested file name.
-pub fn open(app: &mut App, what: What) {
-    app.export.what = what;
-    app.export.open = true;
-    app.export.path = suggested_path(app);
-}
-
-/// Draws the dialog when open.
-pub fn window(app: &mut App, ctx: &egui::Context) {
-    if !app.export.open {
-        return;
+    /// Opens the dialog with a file name suggested from the document.
+    pub fn open(&mut self, what: ExportKind, doc: &Document) {
+        self.what = what;
+        self.open = true;
+        self.path = suggested_path(self, doc);
     }
-    let mut open = true;
-    let mut go = false;
-    let before = (app.export.what, app.export.format);
-    egui::Window::new("Export")
-        .open(&mut open)
-        .resizable(false)
-        .show(ctx, |ui| {
-            let d = &mut app.export;
-            ui.horizontal(|ui| {
-                ui.radio_value(&mut d.what, What::Mesh, "mesh of the selected object");
-                ui.radio_value(&mut d.what, What::Picture, "picture of the 3D view");
-            });
-            match d.what {
-                What::Mesh => {
-                    egui::ComboBox::from_label("format")
-                        .selected_text(extension(d))
-                        .show_ui(ui, |ui| {
-                            for (f, name) in FORMATS {
-                                ui.selectable_value(&mut d.format, f, name);
-                            }
-                        });
-                    ui.weak(if d.format.carries_fields() {
-                        "with the curvature fields K, H, k1, k2, kabs"
-                    } else {
-                        "geometry only (the format has no scalar fields)"
-                    });
-                }
-                What::Picture => {
-                    ui.horizontal(|ui| {
-                        let l = ui.label("width");
-                        ui.add(egui::DragValue::new(&mut d.size[0]).range(16..=8192))
-                            .labelled_by(l.id);
-                        let l = ui.label("height");
-                        ui.add(egui::DragValue::new(&mut d.size[1]).range(16..=8192))
-                            .labelled_by(l.id);
-                    });
-                }
-            }
-            ui.horizontal(|ui| {
-                let l = ui.label("file");
-                ui.text_edit_singleline(&mut d.path).labelled_by(l.id);
-            });
-            go = ui.button("Export").clicked();
+
+    /// Draws the dialog when open; Export goes to `cx` as a command.
+    pub fn window(&mut self, ctx: &egui::Context, cx: &mut ViewContext<'_>) {
+        if !self.open {
+            return;
+        }
+        let mut open = true;
+        let mut go = false;
+        let before = (self.what, self.format);
+        egui::Window::new("Export")
+            .open(&mut open)
+            .resizable(false)
+            .show(ctx, |ui| go = self.fields(ui));
+        if (self.what, self.format) != before {
+            // Keep the typed name, change the extension.
+            let p = PathBuf::from(self.path.trim()).with_extension(extension(self));
+            self.path = p.display().to_string();
+        }
+        if go {
+            cx.emit(self.command());
+        }
+        if !open {
+            self.open = false;
+        }
+    }
+
+    /// The dialog's fields; returns whether Export was clicked.
+    fn fields(&mut self, ui: &mut egui::Ui) -> bool {
+        let d = self;
+        ui.horizontal(|ui| {
+            ui.radio_value(&mut d.what, ExportKind::Mesh, "mesh of the selected object");
+            ui.radio_value(&mut d.what, ExportKind::Picture, "picture of the 3D view");
         });
-    if (app.export.what, app.export.format) != before {
-        // Keep the typed name, change the extension.
-        let p = PathBuf::from(app.export.path.trim()).with_extension(extension(&app.export));
-        app.export.path = p.display().to_string();
-    }
-    if go {
-        run(app);
-    }
-    if !open {
-        app.export.open = false;
+        match d.what {
+            ExportKind::Mesh => {
+                egui::ComboBox::from_label("format")
+                    .selected_text(extension(d))
+                    .show_ui(ui, |ui| {
+                        for (f, name) in FORMATS {
+                            ui.selectable_value(&mut d.format, f, name);
+                        }
+                    });
+                ui.weak(if d.format.carries_fields() {
+                    "with the curvature fields K, H, k1, k2, kabs"
+                } else {
+                    "geometry only (the format has no scalar fields)"
+                });
+            }
+            ExportKind::Picture => {
+                ui.horizontal(|ui| {
+                    let l = ui.label("width");
+                    ui.add(egui::DragValue::new(&mut d.size[0]).range(16..=8192))
+                        .labelled_by(l.id);
+                    let l = ui.label("height");
+                    ui.add(egui::DragValue::new(&mut d.size[1]).range(16..=8192))
+                        .labelled_by(l.id);
+                });
+            }
+        }
+        ui.horizontal(|ui| {
+            let l = ui.label("file");
+            ui.text_edit_singleline(&mut d.path).labelled_by(l.id);
+        });
+        ui.button("Export").clicked()
     }
 }

@@ -6,7 +6,6 @@ use egui_kittest::Harness;
 use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
 
 use crate::app::App;
-use crate::gpu::ViewResources;
 
 /// A harness running `app` in a `width` × `height` window, drawn with wgpu.
 pub fn harness(mut app: App, width: f32, height: f32) -> Harness<'static, App> {
@@ -14,9 +13,7 @@ pub fn harness(mut app: App, width: f32, height: f32) -> Harness<'static, App> {
         default_wgpu_setup(),
         eframe::egui_wgpu::RendererOptions::PREDICTABLE,
     );
-    ViewResources::install(&state);
-    app.gpu = true;
-    app.render_state = Some(state.clone());
+    app.attach_gpu(state.clone());
     Harness::builder()
         .with_size(egui::vec2(width, height))
         .renderer(WgpuTestRenderer::from_render_state(state))

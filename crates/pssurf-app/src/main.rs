@@ -5,10 +5,10 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Parser;
-use pssurf::interrogate::CurvatureQuantity;
 use pssurf_app::App;
 use pssurf_app::display::ViewMode;
 use pssurf_app::scene::Scene;
+use pssurf_app::state::ViewState;
 
 /// The pssurf modeller: open PS, UPS and NURPS surfaces (or scenes) and interrogate them.
 #[derive(Parser, Debug)]
@@ -44,14 +44,7 @@ fn parse_size(s: &str) -> Result<(f32, f32)> {
 }
 
 fn parse_mode(s: &str) -> Result<ViewMode> {
-    Ok(match s {
-        "shaded" => ViewMode::Shaded,
-        "zebra" => ViewMode::Zebra,
-        "wireframe" => ViewMode::Wireframe,
-        q => ViewMode::Curvature(CurvatureQuantity::parse(q).with_context(|| {
-            format!("--mode {q}: use shaded, zebra, wireframe, K, H, k1, k2 or kabs")
-        })?),
-    })
+    ViewMode::parse(s).map_err(|e| anyhow::anyhow!("--mode: {e}"))
 }
 
 fn parse_probe(s: &str) -> Result<(usize, f64, f64)> {
@@ -79,12 +72,29 @@ fn load(files: &[PathBuf]) -> Result<App> {
     Ok(App::new(scene, path))
 }
 
+/// The saved view settings of earlier sessions, unless rendering a screenshot (which must
+/// not depend on them). A damaged settings file is reported and replaced on exit.
+fn restore_view(app: &mut App, interactive: bool) {
+    if !interactive {
+        return;
+    }
+    app.view_file = ViewState::default_path();
+    let Some(path) = app.view_file.clone().filter(|p| p.exists()) else {
+        return;
+    };
+    match ViewState::load(&path) {
+        Ok(view) => app.restore_view(view),
+        Err(e) => app.status = format!("view settings not restored: {e}"),
+    }
+}
+
 fn main() -> Result<()> {
     let args = Args::parse();
     let (w, h) = parse_size(&args.size)?;
     let mut app = load(&args.files)?;
+    restore_view(&mut app, args.screenshot.is_none());
     if let Some(m) = &args.mode {
-        app.display.mode = parse_mode(m)?;
+        app.view.display.mode = parse_mode(m)?;
     }
     if let Some(text) = &args.probe {
         let (object, u, v) = parse_probe(text)?;
@@ -93,7 +103,7 @@ fn main() -> Result<()> {
         }
         app.update_geometry();
         app.set_probe(object, nalgebra::Point2::new(u, v));
-        if app.probe.is_none() {
+        if app.probe().is_none() {
             bail!("--probe: ({u}, {v}) lies outside the domain of object {object}");
         }
     }
@@ -119,9 +129,7 @@ fn main() -> Result<()> {
         options,
         Box::new(move |cc| {
             if let Some(state) = &cc.wgpu_render_state {
-                pssurf_app::gpu::ViewResources::install(state);
-                app.gpu = true;
-                app.render_state = Some(state.clone());
+                app.attach_gpu(state.clone());
             }
             Ok(Box::new(app))
         }),
@@ -132,6 +140,7 @@ fn main() -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use pssurf::interrogate::CurvatureQuantity;
 
     #[test]
     fn bad_options_are_clear_errors() {

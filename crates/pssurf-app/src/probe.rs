@@ -11,7 +11,8 @@ use crate::display::LineVertex;
 use crate::scene::Scene;
 
 /// How the two cross-planes are turned about the normal.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Alignment {
     /// Along the principal directions (the sections have curvatures κ1 and κ2).
     #[default]
@@ -21,7 +22,8 @@ pub enum Alignment {
 }
 
 /// What the probe shows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct ProbeSettings {
     /// Alignment of the cross-planes.
     pub alignment: Alignment,
@@ -273,5 +275,72 @@ mod tests {
             assert!((c[c.len() / 2] - p).norm() < 1e-12, "through the point");
         }
         assert_eq!(osculating_circle(p, n, d, 0.0, 2.0).len(), 2);
+    }
+}
+
+/// The probe of the running application: where it is, what it found, and its lines for the
+/// GPU, recomputed only when its object, its place or its settings change.
+#[derive(Debug, Default)]
+pub struct ProbeState {
+    /// The probed point, if any.
+    pub probe: Option<Probe>,
+    /// Its lines for the 3D view.
+    pub lines: std::sync::Arc<crate::gpu::LineSet>,
+    key: Option<(u64, ProbeSettings)>,
+}
+
+impl ProbeState {
+    /// Puts the probe on object `object` at `uv` (removes it outside the domain); `size` is
+    /// the scene's diameter. Returns whether the point lies on the object.
+    pub fn set(
+        &mut self,
+        scene: &Scene,
+        object: usize,
+        uv: Point2<f64>,
+        settings: &ProbeSettings,
+        size: f64,
+    ) -> bool {
+        self.probe = probe_at(scene, object, uv, settings.alignment, size);
+        self.key = None;
+        self.refresh(scene, settings, size);
+        self.probe.is_some()
+    }
+
+    /// Removes the probe.
+    pub fn clear(&mut self) {
+        self.probe = None;
+        self.key = None;
+        self.lines = Default::default();
+    }
+
+    /// Recomputes the probe after its object changed (following it by identity when another
+    /// object's removal moved it in the list), and its lines after it or `settings` changed.
+    pub fn refresh(&mut self, scene: &Scene, settings: &ProbeSettings, size: f64) {
+        if let Some(p) = &self.probe {
+            let found = scene.index_of(p.id);
+            let stale =
+                found.is_none_or(|i| i != p.object || scene.objects[i].revision != p.revision);
+            let realigned = self
+                .key
+                .is_some_and(|(_, s)| s.alignment != settings.alignment);
+            if stale || realigned {
+                let uv = p.uv;
+                self.probe = found.and_then(|i| probe_at(scene, i, uv, settings.alignment, size));
+            }
+        }
+        let key = self.probe.as_ref().map(|p| (p.revision, *settings));
+        if key == self.key && self.key.is_some() {
+            return;
+        }
+        let lines = self
+            .probe
+            .as_ref()
+            .map(|p| probe_lines(p, settings, size))
+            .unwrap_or_default();
+        self.lines = std::sync::Arc::new(crate::gpu::LineSet {
+            generation: crate::scene::fresh_revision(),
+            lines,
+        });
+        self.key = key;
     }
 }

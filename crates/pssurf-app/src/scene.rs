@@ -2,6 +2,7 @@
 //! that embeds each surface in the library's file format (`docs/format.md`).
 
 use std::path::Path;
+use std::sync::Arc;
 
 use nalgebra::{Matrix4, Rotation3, Vector3};
 use pssurf::io::{Durability, atomic_write_bytes};
@@ -112,8 +113,10 @@ pub struct SceneObject {
     pub visible: bool,
     /// Its placement.
     pub transform: Transform,
-    /// The surface (PS, UPS or NURPS).
-    pub surface: Surface,
+    /// The surface (any kind), shared with the undo history: a snapshot of the scene copies
+    /// the pointer, and an edit copies the surface only when a snapshot still holds it (see
+    /// [`SceneObject::surface_mut`]).
+    pub surface: Arc<Surface>,
     /// A number that changes whenever the surface or transform changes (display caches key
     /// on it; it is not saved).
     pub revision: u64,
@@ -138,7 +141,7 @@ impl SceneObject {
             material: Material::default(),
             visible: true,
             transform: Transform::default(),
-            surface,
+            surface: Arc::new(surface),
             revision: fresh_revision(),
             id: fresh_revision(),
         }
@@ -147,6 +150,13 @@ impl SceneObject {
     /// Marks the object as changed.
     pub fn touch(&mut self) {
         self.revision = fresh_revision();
+    }
+
+    /// The surface for an edit, marked as changed: copied first if the undo history still
+    /// shares it (copy on write), so the history keeps the surface as it was.
+    pub fn surface_mut(&mut self) -> &mut Surface {
+        self.touch();
+        Arc::make_mut(&mut self.surface)
     }
 }
 
@@ -278,7 +288,7 @@ impl Scene {
                 material: o.material,
                 visible: o.visible,
                 transform: o.transform,
-                surface,
+                surface: Arc::new(surface),
                 revision: fresh_revision(),
                 id: fresh_revision(),
             });

@@ -1,7 +1,8 @@
 //! The scene tree: objects, grouped by their group name, with visibility (per object and per
 //! group), selection, rename (in the properties) and delete.
 
-use crate::app::{App, Selection};
+use crate::command::{Command, ViewContext};
+use crate::document::{Document, Selection};
 
 /// What the user asked for in the tree this frame.
 #[derive(Default)]
@@ -11,11 +12,23 @@ struct Actions {
     select: Option<usize>,
 }
 
-/// Draws the scene tree.
-pub fn ui(app: &mut App, ui: &mut egui::Ui) {
+/// The scene tree view.
+#[derive(Debug, Default)]
+pub struct SceneTree;
+
+impl SceneTree {
+    /// Draws the tree; selection, visibility and deletion go to `cx` as commands.
+    pub fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
+        let actions = tree(cx.doc, ui);
+        emit(cx, actions);
+    }
+}
+
+/// Draws the tree and collects what the user asked for.
+fn tree(doc: &Document, ui: &mut egui::Ui) -> Actions {
     ui.heading("Scene");
     let mut actions = Actions::default();
-    let objects = &app.doc.scene.objects;
+    let objects = &doc.scene.objects;
     let mut groups: Vec<&str> = Vec::new();
     for o in objects {
         if !o.group.is_empty() && !groups.contains(&o.group.as_str()) {
@@ -23,7 +36,7 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
         }
     }
     for i in (0..objects.len()).filter(|&i| objects[i].group.is_empty()) {
-        object_row(app, ui, i, &mut actions);
+        object_row(doc, ui, i, &mut actions);
     }
     for g in groups {
         let members: Vec<usize> = (0..objects.len())
@@ -53,7 +66,7 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
                 .default_open(true)
                 .show(ui, |ui| {
                     for &i in &members {
-                        object_row(app, ui, i, &mut actions);
+                        object_row(doc, ui, i, &mut actions);
                     }
                 });
         });
@@ -61,11 +74,11 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
     if objects.is_empty() {
         ui.weak("No objects: open a file from the File menu, or make one in the New menu.");
     }
-    apply(app, actions);
+    actions
 }
 
-fn object_row(app: &App, ui: &mut egui::Ui, i: usize, actions: &mut Actions) {
-    let o = &app.doc.scene.objects[i];
+fn object_row(doc: &Document, ui: &mut egui::Ui, i: usize, actions: &mut Actions) {
+    let o = &doc.scene.objects[i];
     ui.horizontal(|ui| {
         let mut visible = o.visible;
         let r = ui.checkbox(&mut visible, "").on_hover_text("Show or hide");
@@ -80,7 +93,7 @@ fn object_row(app: &App, ui: &mut egui::Ui, i: usize, actions: &mut Actions) {
         if r.changed() {
             actions.toggle = vec![i];
         }
-        let selected = app.selection.object == Some(i);
+        let selected = doc.selection.object == Some(i);
         let label = format!("{} ({})", o.name, o.surface.kind().name());
         if ui
             .selectable_label(selected, label)
@@ -100,30 +113,14 @@ fn object_row(app: &App, ui: &mut egui::Ui, i: usize, actions: &mut Actions) {
     });
 }
 
-fn apply(app: &mut App, actions: Actions) {
+fn emit(cx: &mut ViewContext<'_>, actions: Actions) {
     if let Some(i) = actions.select {
-        app.selection = Selection {
-            object: Some(i),
-            vertex: None,
-        };
-        app.vertex_edit = None;
+        cx.emit(Command::Select(Selection::object(i)));
     }
     if !actions.toggle.is_empty() {
-        let _ = app.doc.edit::<()>("show/hide", |s| {
-            for &i in &actions.toggle {
-                s.objects[i].visible = !s.objects[i].visible;
-            }
-            Ok(())
-        });
+        cx.emit(Command::ToggleVisible(actions.toggle));
     }
     if let Some(i) = actions.delete {
-        let name = app.doc.scene.objects[i].name.clone();
-        let _ = app.doc.edit::<()>("delete", |s| {
-            s.objects.remove(i);
-            Ok(())
-        });
-        app.selection = Selection::default();
-        app.vertex_edit = None;
-        app.status = format!("deleted {name}");
+        cx.emit(Command::Delete(i));
     }
 }

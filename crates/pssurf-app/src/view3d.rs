@@ -5,21 +5,23 @@
 use egui::{Color32, Pos2, Rect, Sense, Stroke, pos2, vec2};
 use nalgebra::{Point2, Point3, Vector3};
 
-use crate::app::App;
-use crate::camera::ray_triangles;
+use crate::camera::{OrbitCamera, ray_triangles};
+use crate::command::{Command, FrameTarget, ViewContext};
 use crate::display::ViewMode;
-use crate::edit;
+use crate::document::Document;
+use crate::edit::{self, VertexControl};
 use crate::gpu::{Uniforms, ViewCallback};
+use crate::state::ViewState;
 
 /// The camera uniforms for a view of `size` pixels.
-pub fn uniforms(app: &App, size: [u32; 2]) -> Uniforms {
-    let c = &app.camera;
+pub fn uniforms(view: &ViewState, size: [u32; 2]) -> Uniforms {
+    let c = &view.camera;
     let aspect = size[0].max(1) as f32 / size[1].max(1) as f32;
     let (right, up) = c.right_up();
     let to_eye = c.to_eye();
-    let light = app.light.direction(right, up, to_eye);
+    let light = view.light.direction(right, up, to_eye);
     let eye = c.eye();
-    let mode = match app.display.mode {
+    let mode = match view.display.mode {
         ViewMode::Shaded => 0.0,
         ViewMode::Curvature(_) => 1.0,
         ViewMode::Zebra => 2.0,
@@ -33,37 +35,128 @@ pub fn uniforms(app: &App, size: [u32; 2]) -> Uniforms {
         axis: [right.x, right.y, right.z, 0.0],
         params: [
             mode,
-            app.display.zebra_width_deg.to_radians(),
-            if app.display.flat { 1.0 } else { 0.0 },
+            view.display.zebra_width_deg.to_radians(),
+            if view.display.flat { 1.0 } else { 0.0 },
             0.0,
         ],
     }
 }
 
-/// Draws the 3D view and handles its input.
-pub fn ui(app: &mut App, ui: &mut egui::Ui) {
-    let rect = ui.available_rect_before_wrap();
-    let response = ui.allocate_rect(rect, Sense::click_and_drag());
-    response
-        .widget_info(|| egui::WidgetInfo::labeled(egui::accesskit::Role::Canvas, true, "3D view"));
-    app.update_geometry();
-    if app.frame_pending {
-        app.frame_all(rect.width() / rect.height().max(1.0));
+/// A control point being dragged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DragHandle {
+    /// The object's index.
+    pub object: usize,
+    /// The vertex (control group).
+    pub vertex: usize,
+    /// The control point within the group.
+    pub point: usize,
+}
+
+/// The 3D view and what it is in the middle of.
+#[derive(Debug, Default)]
+pub struct View3d {
+    /// The control point being dragged, if any.
+    pub drag: Option<DragHandle>,
+}
+
+impl View3d {
+    /// Draws the 3D view; camera moves, probing and control-point drags go to `cx` as
+    /// commands.
+    pub fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
+        let rect = ui.available_rect_before_wrap();
+        let response = ui.allocate_rect(rect, Sense::click_and_drag());
+        response.widget_info(|| {
+            egui::WidgetInfo::labeled(egui::accesskit::Role::Canvas, true, "3D view")
+        });
+        paint_scene(ui, rect, cx);
+        let camera = cx.view.camera;
+        probe_planes(&camera, cx, ui, rect);
+        self.handles_and_drag(ui, rect, &response, cx);
+        let shift = ui.input(|i| i.modifiers.shift);
+        let probing =
+            shift && self.drag.is_none() && response.dragged_by(egui::PointerButton::Primary);
+        let mut moved = camera;
+        if !probing {
+            camera_input(&mut moved, self.drag.is_some(), ui, rect, &response, cx);
+        }
+        if moved != camera {
+            cx.emit(Command::SetCamera(moved));
+        }
+        if (response.clicked() || probing)
+            && let Some(pos) = response.interact_pointer_pos()
+        {
+            let command = pick(cx, &moved, rect, pos);
+            cx.emit(command);
+        }
+        if let Some(p) = cx.probe()
+            && let Some(s) = project(&camera, rect, p.point)
+        {
+            ui.painter()
+                .circle_stroke(s, 5.0, Stroke::new(2.0, Color32::BLACK));
+        }
+        legend(cx, ui, rect);
     }
-    if app.frame_selection_pending {
-        app.frame_selection(rect.width() / rect.height().max(1.0));
+
+    /// Draws the selected vertex's control points and turns drags on them into commands.
+    fn handles_and_drag(
+        &mut self,
+        ui: &egui::Ui,
+        rect: Rect,
+        r: &egui::Response,
+        cx: &mut ViewContext<'_>,
+    ) {
+        let camera = cx.view.camera;
+        let Some((object, vertex, pts)) = control_points(cx.doc) else {
+            self.drag = None;
+            return;
+        };
+        let screen: Vec<Option<Pos2>> = pts.iter().map(|p| project(&camera, rect, *p)).collect();
+        draw_handles(ui, rect, &screen);
+        if r.drag_started_by(egui::PointerButton::Primary)
+            && let Some(pos) = ui.input(|i| i.pointer.press_origin())
+            && let Some(point) = nearest_handle(&screen, pos, 8.0)
+        {
+            cx.emit(Command::StartDrag);
+            self.drag = Some(DragHandle {
+                object,
+                vertex,
+                point,
+            });
+        }
+        let Some(handle) = self.drag else {
+            return;
+        };
+        if r.dragged_by(egui::PointerButton::Primary) {
+            let along_normal = ui.input(|i| i.modifiers.shift);
+            let d = r.drag_delta();
+            if let Some(control) = drag_point(cx.doc, &camera, rect, handle, d, along_normal) {
+                cx.emit(Command::DragVertex {
+                    object: handle.object,
+                    vertex: handle.vertex,
+                    control,
+                });
+            }
+        }
+        if r.drag_stopped() {
+            self.drag = None;
+            cx.status(format!("moved a control point of vertex {}", handle.vertex));
+        }
     }
+}
+
+/// The scene drawn by the GPU (or a note that it needs one).
+fn paint_scene(ui: &egui::Ui, rect: Rect, cx: &ViewContext<'_>) {
     let ppp = ui.ctx().pixels_per_point();
     let size = [
         (rect.width() * ppp).round().max(1.0) as u32,
         (rect.height() * ppp).round().max(1.0) as u32,
     ];
-    app.refresh_probe();
-    if app.gpu {
+    if cx.runtime.gpu.is_some() {
         let cb = ViewCallback {
-            geometry: app.cache.geometry.clone(),
-            extra: app.probe_lines.clone(),
-            uniforms: uniforms(app, size),
+            geometry: cx.runtime.cache.geometry.clone(),
+            extra: cx.runtime.probe.lines.clone(),
+            uniforms: uniforms(cx.view, size),
             size,
         };
         ui.painter()
@@ -78,41 +171,20 @@ pub fn ui(app: &mut App, ui: &mut egui::Ui) {
             Color32::GRAY,
         );
     }
-    probe_planes(app, ui, rect);
-    handles_and_drag(app, ui, rect, &response);
-    let shift = ui.input(|i| i.modifiers.shift);
-    let probing = shift && app.drag.is_none() && response.dragged_by(egui::PointerButton::Primary);
-    if !probing {
-        camera_input(app, ui, rect, &response);
-    }
-    if (response.clicked() || probing)
-        && let Some(pos) = response.interact_pointer_pos()
-    {
-        probe(app, rect, pos);
-    }
-    if let Some(p) = &app.probe
-        && let Some(s) = project(app, rect, p.point)
-    {
-        ui.painter()
-            .circle_stroke(s, 5.0, Stroke::new(2.0, Color32::BLACK));
-    }
-    legend(app, ui, rect);
 }
 
 /// The probe's two cross-planes, translucent, over the view.
-fn probe_planes(app: &App, ui: &egui::Ui, rect: Rect) {
-    let Some(p) = &app.probe else {
+fn probe_planes(camera: &OrbitCamera, cx: &ViewContext<'_>, ui: &egui::Ui, rect: Rect) {
+    let Some(p) = cx.probe() else {
         return;
     };
-    if !app.probe_settings.planes {
+    if !cx.view.probe.planes {
         return;
     }
     let painter = ui.painter_at(rect);
-    for (k, corners) in crate::probe::plane_corners(p, app.scene_size())
-        .iter()
-        .enumerate()
-    {
-        let pts: Option<Vec<Pos2>> = corners.iter().map(|c| project(app, rect, *c)).collect();
+    let size = cx.runtime.cache.scene_size();
+    for (k, corners) in crate::probe::plane_corners(p, size).iter().enumerate() {
+        let pts: Option<Vec<Pos2>> = corners.iter().map(|c| project(camera, rect, *c)).collect();
         let Some(pts) = pts else {
             continue;
         };
@@ -125,31 +197,38 @@ fn probe_planes(app: &App, ui: &egui::Ui, rect: Rect) {
     }
 }
 
-fn camera_input(app: &mut App, ui: &egui::Ui, rect: Rect, r: &egui::Response) {
-    if app.drag.is_none() && r.dragged_by(egui::PointerButton::Primary) {
+/// Orbit (left drag, unless a control point is being dragged), pan (right or middle drag),
+/// zoom (wheel); a double click asks to frame the scene.
+fn camera_input(
+    camera: &mut OrbitCamera,
+    dragging_point: bool,
+    ui: &egui::Ui,
+    rect: Rect,
+    r: &egui::Response,
+    cx: &mut ViewContext<'_>,
+) {
+    if !dragging_point && r.dragged_by(egui::PointerButton::Primary) {
         let d = r.drag_delta();
-        app.camera.orbit(d.x, d.y);
+        camera.orbit(d.x, d.y);
     }
     if r.dragged_by(egui::PointerButton::Secondary) || r.dragged_by(egui::PointerButton::Middle) {
         let d = r.drag_delta();
-        app.camera.pan(d.x, d.y, rect.height());
+        camera.pan(d.x, d.y, rect.height());
     }
     if r.hovered() {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);
         if scroll != 0.0 {
-            app.camera.zoom((scroll * 0.002).exp());
+            camera.zoom((scroll * 0.002).exp());
         }
     }
     if r.double_clicked() {
-        app.frame_pending = true;
+        cx.emit(Command::Frame(FrameTarget::All));
     }
 }
 
 /// Screen position of a scene point, or None behind the camera.
-fn project(app: &App, rect: Rect, p: Vector3<f64>) -> Option<Pos2> {
-    let m = app
-        .camera
-        .view_projection(rect.width() / rect.height().max(1.0));
+fn project(camera: &OrbitCamera, rect: Rect, p: Vector3<f64>) -> Option<Pos2> {
+    let m = camera.view_projection(rect.width() / rect.height().max(1.0));
     let c = m * nalgebra::Vector4::new(p.x as f32, p.y as f32, p.z as f32, 1.0);
     (c.w > 0.0).then(|| {
         let (x, y) = (c.x / c.w, c.y / c.w);
@@ -167,13 +246,15 @@ fn ndc(rect: Rect, pos: Pos2) -> (f32, f32) {
     )
 }
 
-/// Picks the surface under `pos` and evaluates the exact curvature there.
-pub fn probe(app: &mut App, rect: Rect, pos: Pos2) {
+/// The probe command for a click at `pos`: the surface point under it (found on the drawn
+/// meshes, then evaluated exactly), or removing the probe when the click misses.
+pub fn pick(cx: &ViewContext<'_>, camera: &OrbitCamera, rect: Rect, pos: Pos2) -> Command {
     let (x, y) = ndc(rect, pos);
-    let (origin, dir) = app.camera.ray(x, y, rect.width() / rect.height().max(1.0));
+    let (origin, dir) = camera.ray(x, y, rect.width() / rect.height().max(1.0));
     let mut best: Option<(usize, f32, Point2<f64>)> = None;
-    for (i, _) in app.doc.scene.visible() {
-        let Some(m) = app.object_mesh(i) else {
+    let scene = &cx.doc.scene;
+    for (i, _) in scene.visible() {
+        let Some(m) = cx.runtime.cache.object_mesh(scene, i) else {
             continue;
         };
         if let Some((t, d, b)) = ray_triangles(
@@ -192,19 +273,16 @@ pub fn probe(app: &mut App, rect: Rect, pos: Pos2) {
         }
     }
     match best {
-        Some((i, _, uv)) => app.set_probe(i, uv),
-        None => {
-            app.probe = None;
-            app.refresh_probe();
-        }
+        Some((object, _, uv)) => Command::SetProbe { object, uv },
+        None => Command::RemoveProbe,
     }
 }
 
 /// The control points of the selected vertex in scene coordinates.
-fn control_points(app: &App) -> Option<(usize, usize, Vec<Vector3<f64>>)> {
-    let i = app.selection.object?;
-    let v = app.selection.vertex?;
-    let o = app.doc.scene.objects.get(i)?;
+fn control_points(doc: &Document) -> Option<(usize, usize, Vec<Vector3<f64>>)> {
+    let i = doc.selection.object?;
+    let v = doc.selection.vertex?;
+    let o = doc.scene.objects.get(i)?;
     if v >= edit::vertex_count(&o.surface) {
         return None;
     }
@@ -220,66 +298,57 @@ fn control_points(app: &App) -> Option<(usize, usize, Vec<Vector3<f64>>)> {
     ))
 }
 
-fn handles_and_drag(app: &mut App, ui: &egui::Ui, rect: Rect, r: &egui::Response) {
-    let Some((i, v, pts)) = control_points(app) else {
-        app.drag = None;
-        return;
-    };
-    let screen: Vec<Option<Pos2>> = pts.iter().map(|p| project(app, rect, *p)).collect();
+/// The control triangle's edges and points over the view.
+fn draw_handles(ui: &egui::Ui, rect: Rect, screen: &[Option<Pos2>]) {
     let painter = ui.painter_at(rect);
     let stroke = Stroke::new(1.5, Color32::from_rgb(230, 110, 0));
-    for k in 0..3 {
-        if let (Some(a), Some(b)) = (screen[k], screen[(k + 1) % 3]) {
-            painter.line_segment([a, b], stroke);
+    let n = screen.len();
+    if n > 1 {
+        for k in 0..n {
+            if let (Some(a), Some(b)) = (screen[k], screen[(k + 1) % n]) {
+                painter.line_segment([a, b], stroke);
+            }
         }
     }
     for s in screen.iter().flatten() {
         painter.circle(*s, 5.0, Color32::WHITE, stroke);
     }
-    if r.drag_started_by(egui::PointerButton::Primary)
-        && let Some(pos) = ui.input(|i| i.pointer.press_origin())
-        && let Some(k) = (0..3)
-            .filter(|&k| screen[k].is_some_and(|s| s.distance(pos) <= 8.0))
-            .min_by(|&a, &b| {
-                let d = |k: usize| screen[k].map(|s| s.distance(pos)).unwrap_or(f32::INFINITY);
-                d(a).total_cmp(&d(b))
-            })
-    {
-        app.doc.checkpoint("drag control point");
-        app.drag = Some((i, v, k));
-    }
-    if let Some((i, v, k)) = app.drag {
-        if r.dragged_by(egui::PointerButton::Primary) {
-            let d = r.drag_delta();
-            let along_normal = ui.input(|i| i.modifiers.shift);
-            drag_point(app, rect, (i, v, k), d, along_normal);
-        }
-        if r.drag_stopped() {
-            app.drag = None;
-            app.status = format!("moved a control point of vertex {v}");
-        }
-    }
 }
 
-/// Moves control point `k` of vertex `v` of object `i` by a screen displacement: in the view
-/// plane, or with `along_normal` along the surface normal at the vertex (the normal of its
-/// control triangle, which spans the tangent plane there, Theorem 2.25) by the part of the
-/// displacement along the normal's screen image. For a functional surface only the height
-/// changes, by the vertical displacement.
+/// The handle nearest to `pos` within `radius` pixels.
+fn nearest_handle(screen: &[Option<Pos2>], pos: Pos2, radius: f32) -> Option<usize> {
+    let d = |k: usize| screen[k].map_or(f32::INFINITY, |s| s.distance(pos));
+    (0..screen.len())
+        .filter(|&k| d(k) <= radius)
+        .min_by(|&a, &b| d(a).total_cmp(&d(b)))
+}
+
+/// The control points of `handle`'s vertex after moving its point by a screen displacement
+/// `d`: in the view plane, or with `along_normal` along the surface normal at the vertex (the
+/// normal of its control triangle, which spans the tangent plane there, Theorem 2.25) by the
+/// part of the displacement along the normal's screen image. For a functional surface only
+/// the height changes, by the vertical displacement. None when nothing moves or the handle
+/// no longer exists.
 pub fn drag_point(
-    app: &mut App,
+    doc: &Document,
+    camera: &OrbitCamera,
     rect: Rect,
-    (i, v, k): (usize, usize, usize),
+    handle: DragHandle,
     d: egui::Vec2,
     along_normal: bool,
-) {
-    if d == egui::Vec2::ZERO {
-        return;
+) -> Option<VertexControl> {
+    let DragHandle {
+        object: i,
+        vertex: v,
+        point: k,
+    } = handle;
+    let o = doc.scene.objects.get(i)?;
+    if d == egui::Vec2::ZERO || v >= edit::vertex_count(&o.surface) {
+        return None;
     }
-    let per_pixel = 2.0 * app.camera.visible_half_height() as f64 / rect.height().max(1.0) as f64;
-    let (right, up) = app.camera.right_up();
+    let per_pixel = 2.0 * camera.visible_half_height() as f64 / rect.height().max(1.0) as f64;
+    let (right, up) = camera.right_up();
     let (right, up) = (right.cast::<f64>(), up.cast::<f64>());
-    let o = &app.doc.scene.objects[i];
     let mut c = edit::vertex_control(&o.surface, v);
     let mut world = per_pixel * (d.x as f64 * right - d.y as f64 * up);
     let t = o.transform;
@@ -297,22 +366,21 @@ pub fn drag_point(
     }
     let inverse = m.try_inverse().unwrap_or_else(nalgebra::Matrix4::identity);
     let local = inverse.transform_vector(&world);
+    let p = c.points.get_mut(k)?;
     if c.functional {
-        c.points[k].z -= d.y as f64 * per_pixel / t.scale;
+        p.z -= d.y as f64 * per_pixel / t.scale;
     } else {
-        c.points[k] += local;
+        *p += local;
     }
-    if let Err(e) = app.drag_vertex(i, v, c) {
-        app.status = e;
-    }
-    app.vertex_edit = None;
+    Some(c)
 }
 
-fn legend(app: &App, ui: &egui::Ui, rect: Rect) {
-    let (Some(scale), ViewMode::Curvature(_)) = (&app.cache.scale, app.display.mode) else {
+fn legend(cx: &ViewContext<'_>, ui: &egui::Ui, rect: Rect) {
+    let display = &cx.view.display;
+    let (Some(scale), ViewMode::Curvature(_)) = (&cx.runtime.cache.scale, display.mode) else {
         return;
     };
-    let map = crate::display::color_map(&app.display);
+    let map = crate::display::color_map(display);
     let painter = ui.painter_at(rect);
     let bar = Rect::from_min_size(
         pos2(rect.right() - 90.0, rect.top() + 40.0),
@@ -363,7 +431,7 @@ fn legend(app: &App, ui: &egui::Ui, rect: Rect) {
     painter.text(
         pos2(bar.center().x, bar.top() - 8.0),
         egui::Align2::CENTER_BOTTOM,
-        crate::properties::mode_name(app.display.mode),
+        display.mode.name(),
         egui::FontId::proportional(12.0),
         Color32::BLACK,
     );

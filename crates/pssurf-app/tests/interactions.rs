@@ -41,7 +41,7 @@ fn click(h: &mut Harness<'_, App>, pos: Pos2) {
 fn vertex_on_screen(h: &Harness<'_, App>, v: usize) -> Pos2 {
     let rect = h.get_by_label("domain view").rect();
     let app = h.state();
-    let tri = app.doc.scene.objects[app.selection.object.unwrap()]
+    let tri = app.doc.scene.objects[app.doc.selection.object.unwrap()]
         .surface
         .ps_basis()
         .unwrap()
@@ -59,12 +59,16 @@ fn z_at(app: &App, object: usize, uv: Point2<f64>) -> f64 {
 #[test]
 fn clicking_a_ps_triangle_in_the_domain_view_selects_its_vertex() {
     let mut h = harness(App::demo());
-    assert_eq!(h.state().selection.object, Some(0));
-    assert_eq!(h.state().selection.vertex, None);
+    assert_eq!(h.state().doc.selection.object, Some(0));
+    assert_eq!(h.state().doc.selection.vertex, None);
     for v in [0, 7, 20] {
         let pos = vertex_on_screen(&h, v);
         click(&mut h, pos);
-        assert_eq!(h.state().selection.vertex, Some(v), "clicked vertex {v}");
+        assert_eq!(
+            h.state().doc.selection.vertex,
+            Some(v),
+            "clicked vertex {v}"
+        );
     }
     // The editor shows the selected vertex's control points.
     h.get_by_label("Q1 z");
@@ -76,7 +80,7 @@ fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
     let v = 12;
     let pos = vertex_on_screen(&h, v);
     click(&mut h, pos);
-    assert_eq!(h.state().selection.vertex, Some(v));
+    assert_eq!(h.state().doc.selection.vertex, Some(v));
     let before = vertex_control(&h.state().doc.scene.objects[0].surface, v);
     let uv = h.state().doc.scene.objects[0]
         .surface
@@ -115,7 +119,7 @@ fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
 #[test]
 fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
     let mut app = App::demo();
-    app.selection.vertex = Some(5);
+    app.doc.selection.vertex = Some(5);
     let mut h = harness(app);
     let before = vertex_control(&h.state().doc.scene.objects[0].surface, 5);
     // Find the first control point's handle on the screen.
@@ -125,7 +129,10 @@ fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
         .transform
         .matrix()
         .transform_point(&nalgebra::Point3::from(before.points[0]));
-    let m = app.camera.view_projection(view.width() / view.height());
+    let m = app
+        .view
+        .camera
+        .view_projection(view.width() / view.height());
     let c = m * nalgebra::Vector4::new(p.x as f32, p.y as f32, p.z as f32, 1.0);
     let start = Pos2::new(
         view.left() + 0.5 * (c.x / c.w + 1.0) * view.width(),
@@ -154,12 +161,12 @@ fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
     h.run_steps(2);
     let after = vertex_control(&h.state().doc.scene.objects[0].surface, 5);
     // Dragged upwards on the screen: the point moved along the camera's up direction.
-    let (_, up) = h.state().camera.right_up();
+    let (_, up) = h.state().view.camera.right_up();
     let moved = after.points[0] - before.points[0];
     assert!(
         moved.norm() > 1e-3,
         "the point did not move (start {start:?}, view {view:?}, camera {:?}, status {})",
-        h.state().camera,
+        h.state().view.camera,
         h.state().status
     );
     assert!(
@@ -179,20 +186,21 @@ fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
 #[test]
 fn the_curvature_plot_toggles_and_colours_the_mesh() {
     let mut app = App::demo();
-    app.display.mode = ViewMode::Shaded;
+    app.view.display.mode = ViewMode::Shaded;
     let mut h = harness(app);
-    assert!(h.state().cache.scale.is_none());
+    assert!(h.state().runtime.cache.scale.is_none());
     h.get_by_label("show").click();
     h.run_steps(2);
     h.get_by_label("mean curvature H").click();
     h.run_steps(3);
     let app = h.state();
-    assert!(matches!(app.display.mode, ViewMode::Curvature(_)));
+    assert!(matches!(app.view.display.mode, ViewMode::Curvature(_)));
     assert!(
-        app.cache.scale.is_some(),
+        app.runtime.cache.scale.is_some(),
         "a curvature plot has a colour scale for its legend"
     );
     let colours: std::collections::HashSet<[u8; 4]> = app
+        .runtime
         .cache
         .geometry
         .vertices
@@ -333,16 +341,16 @@ fn shift_click(h: &mut Harness<'_, App>, pos: Pos2) {
 #[test]
 fn shift_clicking_the_domain_view_probes_the_paraboloid_with_its_exact_curvature() {
     let mut app = App::demo();
-    app.selection.object = Some(1);
+    app.doc.selection.object = Some(1);
     let mut h = harness(app);
     let rect = h.get_by_label("domain view").rect();
     let pos = rect.center() + vec2(23.0, -11.0);
     shift_click(&mut h, pos);
     let app = h.state();
-    let p = app.probe.clone().expect("a probe");
+    let p = app.probe().cloned().expect("a probe");
     assert_eq!(p.object, 1);
     assert_eq!(
-        app.selection.vertex, None,
+        app.doc.selection.vertex, None,
         "Shift+click probes instead of selecting"
     );
     // z = (u² + v²)/2: K = 1/W⁴, κ1 = 1/W, κ2 = 1/W³ with W = √(1 + u² + v²).
@@ -369,16 +377,28 @@ fn shift_clicking_the_domain_view_probes_the_paraboloid_with_its_exact_curvature
             assert!((q - p.point).dot(&plane).abs() < 1e-12);
         }
     }
-    assert!(!app.probe_lines.lines.is_empty());
+    assert!(!app.runtime.probe.lines.lines.is_empty());
     // Parametric alignment turns the planes to s_u and s_v: here the x and y axes.
     h.get_by_label("Probe").click();
     h.run_steps(2);
     h.get_by_label("parametric").click();
     h.run_steps(2);
-    let p = h.state().probe.clone().unwrap();
+    let p = h.state().probe().cloned().unwrap();
     let d = p.cross.unwrap().directions;
     let su = nalgebra::Vector3::new(1.0, 0.0, u).normalize();
     assert!((d[0] - su).norm() < 1e-12, "{:?}", d[0]);
+}
+
+/// Drags control point 2 of vertex `v` of object 1 by `d` pixels in a view of `rect`.
+fn drag(app: &mut App, rect: egui::Rect, v: usize, d: egui::Vec2, along_normal: bool) {
+    use pssurf_app::view3d::{DragHandle, drag_point};
+    let handle = DragHandle {
+        object: 1,
+        vertex: v,
+        point: 2,
+    };
+    let c = drag_point(&app.doc, &app.view.camera, rect, handle, d, along_normal).unwrap();
+    app.drag_vertex(1, v, c).unwrap();
 }
 
 #[test]
@@ -391,14 +411,14 @@ fn a_shift_drag_moves_a_control_point_along_the_surface_normal() {
     let before = vertex_control(&app.doc.scene.objects[1].surface, v);
     let [a, b, c] = [before.points[0], before.points[1], before.points[2]];
     let normal = (b - a).cross(&(c - a)).normalize();
-    pssurf_app::view3d::drag_point(&mut app, rect, (1, v, 2), vec2(4.0, -25.0), true);
+    drag(&mut app, rect, v, vec2(4.0, -25.0), true);
     let after = vertex_control(&app.doc.scene.objects[1].surface, v);
     let moved = after.points[2] - before.points[2];
     assert!(moved.norm() > 1e-3, "did not move");
     assert!(moved.cross(&normal).norm() < 1e-12 * moved.norm().max(1.0));
     assert_eq!(after.points[..2], before.points[..2]);
     // Without Shift the point moves in the view plane, not along the normal.
-    pssurf_app::view3d::drag_point(&mut app, rect, (1, v, 2), vec2(25.0, 0.0), false);
+    drag(&mut app, rect, v, vec2(25.0, 0.0), false);
     let again = vertex_control(&app.doc.scene.objects[1].surface, v);
     let step = again.points[2] - after.points[2];
     assert!(step.cross(&normal).norm() > 1e-3);
@@ -419,7 +439,7 @@ fn the_new_quadric_dialog_adds_an_exact_hyperbolic_paraboloid_that_undo_removes(
     h.run_steps(3);
     let app = h.state();
     assert_eq!(app.doc.scene.objects.len(), 3, "status: {}", app.status);
-    assert_eq!(app.selection.object, Some(2));
+    assert_eq!(app.doc.selection.object, Some(2));
     let o = &app.doc.scene.objects[2];
     assert!(o.name.starts_with("hyperbolic paraboloid"), "{}", o.name);
     let s = &o.surface;
@@ -441,24 +461,24 @@ fn the_new_quadric_dialog_adds_an_exact_hyperbolic_paraboloid_that_undo_removes(
 #[test]
 fn the_new_ups_dialog_reports_a_bad_formula_and_adds_nothing() {
     let mut app = App::demo();
-    app.new_surface.open = true;
-    app.new_surface.formula = "sqrt(x) + t".into();
+    app.views.new_surface.open = true;
+    app.views.new_surface.formula = "sqrt(x) + t".into();
     let mut h = harness(app);
     h.get_by_label("Create").click();
     h.run_steps(2);
     let app = h.state();
     assert_eq!(app.doc.scene.objects.len(), 2);
-    let e = app.new_surface.error.clone().expect("an error");
+    let e = app.views.new_surface.error.clone().expect("an error");
     assert!(e.contains("`t`"), "{e}");
-    assert!(app.new_surface.open);
+    assert!(app.views.new_surface.open);
 }
 
 #[test]
 fn materials_colour_the_shaded_mesh_and_groups_hide_together() {
     use pssurf_app::scene::Material;
     let mut app = App::demo();
-    app.display.mode = ViewMode::Shaded;
-    app.selection.object = Some(1);
+    app.view.display.mode = ViewMode::Shaded;
+    app.doc.selection.object = Some(1);
     let mut h = harness(app);
     h.get_by_label("material").click();
     h.run_steps(2);
@@ -479,7 +499,7 @@ fn materials_colour_the_shaded_mesh_and_groups_hide_together() {
     );
     // Put both objects in one group; its checkbox hides both, undo shows them again.
     for object in [1, 0] {
-        h.state_mut().selection.object = Some(object);
+        h.state_mut().doc.selection.object = Some(object);
         h.run_steps(2);
         h.get_by_label("group").click();
         h.run_steps(1);
@@ -506,19 +526,25 @@ fn materials_colour_the_shaded_mesh_and_groups_hide_together() {
 fn the_export_dialog_writes_the_selected_mesh_in_scene_placement() {
     let dir = tempfile::tempdir().unwrap();
     let mut app = App::demo();
-    app.selection.object = Some(1);
+    app.doc.selection.object = Some(1);
     let mut h = harness(app);
     h.get_by_label("File").click();
     h.run_steps(2);
     h.get_by_label("Export mesh…").click();
     h.run_steps(2);
-    assert!(h.state().export.path.ends_with("NURPS_paraboloid.ply"));
+    assert!(
+        h.state()
+            .views
+            .export
+            .path
+            .ends_with("NURPS_paraboloid.ply")
+    );
     h.get_by_label("format").click();
     h.run_steps(2);
     h.get_by_label("obj").click();
     h.run_steps(2);
     let path = dir.path().join("bowl.obj");
-    h.state_mut().export.path = path.display().to_string();
+    h.state_mut().views.export.path = path.display().to_string();
     h.run_steps(1);
     h.get_by_role_and_label(egui::accesskit::Role::Button, "Export")
         .click();
@@ -546,37 +572,39 @@ fn the_export_dialog_writes_the_selected_mesh_in_scene_placement() {
         (lo - dlo.x - 2.6).abs() < 1e-9 && (hi - dhi.x - 2.6).abs() < 1e-9,
         "{lo} {hi}"
     );
-    assert!(!app.export.open);
+    assert!(!app.views.export.open);
 }
 
 #[test]
 fn the_camera_moves_from_the_keyboard() {
     let mut h = harness(App::demo());
-    let before = h.state().camera;
+    let before = h.state().view.camera;
     h.key_press(Key::ArrowLeft);
     h.run_steps(1);
-    let after = h.state().camera;
+    let after = h.state().view.camera;
     let turned = (after.azimuth_deg - before.azimuth_deg).rem_euclid(360.0);
     assert!((turned - 355.0).abs() < 1e-3, "{turned}");
     h.key_press(Key::Plus);
     h.run_steps(1);
-    assert!(h.state().camera.half_height < 0.81 * after.half_height);
+    assert!(h.state().view.camera.half_height < 0.81 * after.half_height);
     h.key_press(Key::F);
     h.run_steps(2);
-    assert!((h.state().camera.half_height - before.half_height).abs() < 1e-4 * before.half_height);
+    assert!(
+        (h.state().view.camera.half_height - before.half_height).abs() < 1e-4 * before.half_height
+    );
 }
 
 #[test]
 fn a_fixed_colour_range_and_frame_selection_from_the_ui() {
     let mut app = App::demo();
-    app.selection.object = Some(1);
+    app.doc.selection.object = Some(1);
     let mut h = harness(app);
     h.get_by_label("fixed").click();
     h.run_steps(2);
     h.get_by_label("from").set_value_accesskit(-0.5);
     h.get_by_label("to").set_value_accesskit(2.0);
     h.run_steps(3);
-    match h.state().cache.scale {
+    match h.state().runtime.cache.scale {
         Some(pssurf_viz::colormap::ColorScale::Linear { lo, hi }) => {
             assert_eq!((lo, hi), (-0.5, 2.0));
         }
@@ -586,7 +614,7 @@ fn a_fixed_colour_range_and_frame_selection_from_the_ui() {
     h.run_steps(2);
     let app = h.state();
     let (lo, hi) = pssurf_app::display::bounds([app.object_mesh(1).unwrap()]).unwrap();
-    assert!((app.camera.target - 0.5 * (lo + hi)).norm() < 1e-5);
+    assert!((app.view.camera.target - 0.5 * (lo + hi)).norm() < 1e-5);
 }
 
 #[test]
@@ -595,21 +623,19 @@ fn exports_with_bad_settings_fail_with_a_message_and_write_nothing() {
     let mut app = App::demo();
     app.update_geometry();
     let path = dir.path().join("x.png");
-    let e = pssurf_app::export::export_picture(&mut app, &path, [8, 600]).unwrap_err();
+    let e = app.export_picture(&path, [8, 600]).unwrap_err();
     assert!(e.contains("between 16 and 8192"), "{e}");
     // No GPU in this test: a clear message instead of a picture.
-    let e = pssurf_app::export::export_picture(&mut app, &path, [800, 600]).unwrap_err();
+    let e = app.export_picture(&path, [800, 600]).unwrap_err();
     assert!(e.contains("wgpu"), "{e}");
-    app.selection.object = None;
-    let e = pssurf_app::export::export_mesh(
-        &app,
-        &dir.path().join("m.ply"),
-        pssurf_viz::MeshFormat::Ply,
-    )
-    .unwrap_err();
+    app.doc.selection.object = None;
+    let e = app
+        .export_mesh(&dir.path().join("m.ply"), pssurf_viz::MeshFormat::Ply)
+        .unwrap_err();
     assert!(e.contains("select"), "{e}");
-    app.export.path = "  ".into();
-    pssurf_app::export::run(&mut app);
+    app.views.export.path = "  ".into();
+    let run = app.views.export.command();
+    app.apply(run);
     assert!(
         app.error
             .as_deref()
@@ -623,17 +649,17 @@ fn the_probe_follows_its_object_when_another_is_deleted() {
     let mut app = App::demo();
     app.update_geometry();
     app.set_probe(1, Point2::new(0.1, 0.2));
-    let before = app.probe.clone().unwrap();
+    let before = app.probe().cloned().unwrap();
     let _ = app.doc.edit::<()>("delete", |s| {
         s.objects.remove(0);
         Ok(())
     });
     app.refresh_probe();
-    let p = app.probe.clone().expect("still probing the paraboloid");
+    let p = app.probe().cloned().expect("still probing the paraboloid");
     assert_eq!((p.object, p.id), (0, before.id));
     assert_eq!(p.uv, before.uv);
     // Undo brings the deleted object back in front; the probe moves with the paraboloid.
     app.undo();
     app.refresh_probe();
-    assert_eq!(app.probe.as_ref().unwrap().object, 1);
+    assert_eq!(app.probe().unwrap().object, 1);
 }

@@ -15,15 +15,15 @@ use pssurf_viz::plot::{Overlays, Range};
 /// and every overlay on.
 fn app() -> App {
     let mut app = App::demo();
-    app.display.mode = ViewMode::Curvature(CurvatureQuantity::Mean);
-    app.display.range = Range::Fixed(-2.0, 2.0);
-    app.display.overlays = Overlays {
+    app.view.display.mode = ViewMode::Curvature(CurvatureQuantity::Mean);
+    app.view.display.range = Range::Fixed(-2.0, 2.0);
+    app.view.display.overlays = Overlays {
         wire: true,
         refinement: true,
         control: true,
         boundary: true,
     };
-    app.display.mesh_edges = true;
+    app.view.display.mesh_edges = true;
     app.update_geometry();
     app
 }
@@ -39,10 +39,10 @@ fn drag(app: &mut App, vertex: usize, d: f64) {
 #[test]
 fn a_drag_rewrites_only_the_molecule_and_equals_a_full_rebuild() {
     let mut app = app();
-    let before = app.cache.geometry.clone();
+    let before = app.runtime.cache.geometry.clone();
     let vertex = 4;
     drag(&mut app, vertex, 0.3);
-    let g = app.cache.geometry.clone();
+    let g = app.runtime.cache.geometry.clone();
     assert_eq!(g.history.len(), 1);
     let update = &g.history[0];
     assert_eq!(update.from, before.generation);
@@ -54,7 +54,7 @@ fn a_drag_rewrites_only_the_molecule_and_equals_a_full_rebuild() {
         .triangulation()
         .molecule(vertex)
         .len();
-    let level = pssurf_app::display::display_level(&app.doc.scene.objects[1], &app.display);
+    let level = pssurf_app::display::display_level(&app.doc.scene.objects[1], &app.view.display);
     let rewritten: usize = update.vertices.iter().map(|r| r.len()).sum();
     assert_eq!(
         rewritten,
@@ -79,14 +79,14 @@ fn a_drag_rewrites_only_the_molecule_and_equals_a_full_rebuild() {
     }
     // A second drag step chains on the first.
     drag(&mut app, vertex, -0.1);
-    let g = app.cache.geometry.clone();
+    let g = app.runtime.cache.geometry.clone();
     assert_eq!(g.history.len(), 2);
     assert_eq!(g.history[1].from, g.history[0].to);
     // The same scene built from scratch gives the same geometry, bit for bit.
     let mut fresh = App::new(app.doc.scene.clone(), None);
-    fresh.display = app.display.clone();
+    fresh.view.display = app.view.display.clone();
     fresh.update_geometry();
-    let f = &fresh.cache.geometry;
+    let f = &fresh.runtime.cache.geometry;
     assert_eq!(f.vertices, g.vertices);
     assert_eq!(f.indices, g.indices);
     assert_eq!(f.lines, g.lines);
@@ -95,12 +95,12 @@ fn a_drag_rewrites_only_the_molecule_and_equals_a_full_rebuild() {
 #[test]
 fn a_rejected_drag_changes_nothing() {
     let mut app = app();
-    let before = app.cache.geometry.clone();
+    let before = app.runtime.cache.geometry.clone();
     let mut c = vertex_control(&app.doc.scene.objects[1].surface, 2);
     c.weights = Some(vec![1.0, 0.0, 1.0]);
     assert!(app.drag_vertex(1, 2, c).is_err());
-    assert_eq!(app.cache.geometry.generation, before.generation);
-    assert!(app.cache.geometry.history.is_empty());
+    assert_eq!(app.runtime.cache.geometry.generation, before.generation);
+    assert!(app.runtime.cache.geometry.history.is_empty());
 }
 
 #[test]
@@ -113,7 +113,7 @@ fn the_gpu_gets_only_the_rewritten_ranges_and_draws_what_a_full_upload_draws() {
     let mut app = app();
     app.frame_all(1.5);
     let size = [300, 200];
-    let u = uniforms(&app, size);
+    let u = uniforms(&app.view, size);
     let draw = |r: &mut ViewRenderer| {
         let mut encoder = device.create_command_encoder(&Default::default());
         r.render(device, queue, &mut encoder, size, &u);
@@ -121,16 +121,16 @@ fn the_gpu_gets_only_the_rewritten_ranges_and_draws_what_a_full_upload_draws() {
         read_texture(device, queue, r.color_texture().unwrap()).unwrap()
     };
     let mut live = ViewRenderer::new(device);
-    live.upload(device, queue, &app.cache.geometry);
+    live.upload(device, queue, &app.runtime.cache.geometry);
     let first = draw(&mut live);
     drag(&mut app, 4, 0.4);
     drag(&mut app, 4, 0.2);
-    live.upload(device, queue, &app.cache.geometry);
+    live.upload(device, queue, &app.runtime.cache.geometry);
     assert_eq!(live.uploads.full, 1);
     assert_eq!(live.uploads.partial, 1);
     let partial = draw(&mut live);
     let mut full = ViewRenderer::new(device);
-    full.upload(device, queue, &app.cache.geometry);
+    full.upload(device, queue, &app.runtime.cache.geometry);
     let whole = draw(&mut full);
     assert!(partial == whole, "a partial upload draws another picture");
     assert!(first != partial, "the drag changed nothing on screen");

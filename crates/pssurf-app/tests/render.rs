@@ -3,6 +3,7 @@
 
 use egui_kittest::SnapshotOptions;
 use pssurf_app::App;
+use pssurf_app::command::Command;
 use pssurf_app::display::ViewMode;
 use pssurf_app::headless;
 
@@ -51,7 +52,7 @@ fn the_demo_scene_renders_with_curvature_colours_and_a_legend() {
 /// Renders the demo in `mode` and compares with `tests/snapshots/NAME.png`.
 fn snapshot(name: &str, mode: ViewMode) {
     let mut app = App::demo();
-    app.display.mode = mode;
+    app.view.display.mode = mode;
     let mut h = headless::harness(app, 900.0, 600.0);
     h.run_steps(4);
     // Software rasterisers differ in the last bit of shading and in edge coverage; a
@@ -81,10 +82,13 @@ fn export_picture_renders_the_view_offscreen_at_the_requested_size() {
     h.run_steps(3);
     {
         let app = h.state_mut();
-        pssurf_app::export::open(app, pssurf_app::export::What::Picture);
-        app.export.size = [640, 360];
-        app.export.path = path.display().to_string();
-        pssurf_app::export::run(app);
+        app.apply(Command::OpenExport(
+            pssurf_app::command::ExportKind::Picture,
+        ));
+        app.views.export.size = [640, 360];
+        app.views.export.path = path.display().to_string();
+        let run = app.views.export.command();
+        app.apply(run);
         assert!(app.error.is_none(), "{:?}", app.error);
     }
     let img = image::open(&path).unwrap().to_rgba8();
@@ -106,7 +110,7 @@ fn export_picture_renders_the_view_offscreen_at_the_requested_size() {
 #[test]
 fn the_wireframe_shows_dark_edges_on_the_background_and_nothing_else() {
     let mut app = App::demo();
-    app.display.mode = ViewMode::Wireframe;
+    app.view.display.mode = ViewMode::Wireframe;
     let mut h = headless::harness(app, 900.0, 600.0);
     h.run_steps(4);
     let view = {

@@ -1,6 +1,8 @@
-//! Algorithm panels: each is a self-contained dialog that edits the document through
-//! [`PanelContext`]. New capabilities (curves, editing by curvature, hole filling, NURBS)
-//! plug in by implementing [`Panel`] and adding one line to [`default_panels`].
+//! Algorithm panels: each is a self-contained dialog with its own settings that reads the
+//! application through a [`ViewContext`] and asks for changes with commands (a new surface is
+//! [`Command::ReplaceSurface`], one undo step). New capabilities (curves, editing by
+//! curvature, hole filling, NURBS) plug in by implementing [`Panel`] and adding one line to
+//! [`default_panels`].
 
 mod noise;
 mod subdivision;
@@ -10,49 +12,24 @@ pub use noise::NoisePanel;
 pub use subdivision::SubdivisionPanel;
 pub use wavelet::WaveletPanel;
 
-use crate::document::Document;
-use crate::scene::SceneObject;
-use pssurf::surface::UpsSurface;
+use pssurf::surface::Surface;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 
-/// What a panel may read and change.
-pub struct PanelContext<'a> {
-    /// The document (edits go through `Document::edit` so they can be undone).
-    pub doc: &'a mut Document,
-    /// The selected object, if any.
-    pub selected: Option<usize>,
-    /// A message for the status bar.
-    pub status: &'a mut String,
-}
-
-impl PanelContext<'_> {
-    /// The selected object.
-    pub fn object(&self) -> Option<&SceneObject> {
-        self.selected.and_then(|i| self.doc.scene.objects.get(i))
-    }
-
-    /// The selected object's uniform (UPS) form, if it has one.
-    pub fn uniform(&self) -> Option<&UpsSurface> {
-        self.object().and_then(|o| o.surface.uniform())
-    }
-
-    /// Replaces the selected object's surface as one undoable edit named `what`.
-    pub fn replace_surface(&mut self, what: &str, surface: pssurf::surface::Surface) {
-        let Some(i) = self.selected else { return };
-        let _ = self.doc.edit::<()>(what, |scene| {
-            let o = &mut scene.objects[i];
-            o.surface = surface;
-            o.touch();
-            Ok(())
-        });
-    }
-}
+use crate::command::{Command, ViewContext};
 
 /// A dialog of the application.
 pub trait Panel {
-    /// The title shown on the panel's header.
+    /// The title shown on the panel's header (also the key of its saved settings).
     fn title(&self) -> &'static str;
-    /// Draws the panel and applies what the user asks for.
-    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut PanelContext<'_>);
+    /// Draws the panel; what the user asks for goes to `cx` as commands.
+    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>);
+    /// The settings worth keeping to the next session, as JSON (none by default).
+    fn settings(&self) -> Option<serde_json::Value> {
+        None
+    }
+    /// Takes back settings saved by [`Panel::settings`]; values that do not fit are ignored.
+    fn restore(&mut self, _settings: &serde_json::Value) {}
 }
 
 /// The panels of this build, in display order.
@@ -67,4 +44,31 @@ pub fn default_panels() -> Vec<Box<dyn Panel>> {
 /// A hint shown when a panel needs a UPS surface.
 pub fn needs_ups(ui: &mut egui::Ui) {
     ui.weak("Select a UPS surface (uniform triangulation) to use this.");
+}
+
+/// Asks to replace the selected object's surface as one undoable edit named `what`.
+pub fn replace_selected(
+    cx: &mut ViewContext<'_>,
+    what: &'static str,
+    surface: Surface,
+    status: String,
+) {
+    if let Some(object) = cx.selected() {
+        cx.emit(Command::ReplaceSurface {
+            object,
+            what,
+            surface: Box::new(surface),
+            status,
+        });
+    }
+}
+
+/// A panel's settings as JSON.
+fn save_settings<T: Serialize>(settings: &T) -> Option<serde_json::Value> {
+    serde_json::to_value(settings).ok()
+}
+
+/// Settings read back from JSON, if they fit `T`.
+fn load_settings<T: DeserializeOwned>(value: &serde_json::Value) -> Option<T> {
+    serde_json::from_value(value.clone()).ok()
 }

@@ -1,10 +1,11 @@
 //! Reproducible noise on a surface's control points (for denoising experiments).
 
-use super::{Panel, PanelContext};
+use super::{Panel, load_settings, replace_selected, save_settings};
+use crate::command::ViewContext;
 use pssurf::noise::NoiseKind;
 
 /// The noise dialog.
-#[derive(Debug)]
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
 pub struct NoisePanel {
     /// Amplitude (uniform: half-width; Gaussian: standard deviation).
     pub amplitude: f64,
@@ -29,7 +30,7 @@ impl Panel for NoisePanel {
         "Noise"
     }
 
-    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut PanelContext<'_>) {
+    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         let Some(surface) = cx.object().map(|o| &o.surface) else {
             ui.weak("Select a surface to perturb its control points.");
             return;
@@ -62,13 +63,28 @@ impl Panel for NoisePanel {
             let noisy = match surface.with_noise(a, kind, seed) {
                 Ok(noisy) => noisy,
                 Err(e) => {
-                    *cx.status = format!("noise refused: {e}");
+                    cx.status(format!("noise refused: {e}"));
                     return;
                 }
             };
-            cx.replace_surface("add noise", noisy);
-            *cx.status = format!("added noise of amplitude {a} (seed {seed})");
+            let status = format!("added noise of amplitude {a} (seed {seed})");
+            replace_selected(cx, "add noise", noisy, status);
             self.seed += 1;
+        }
+    }
+
+    fn settings(&self) -> Option<serde_json::Value> {
+        save_settings(self)
+    }
+
+    fn restore(&mut self, settings: &serde_json::Value) {
+        if let Some(s) = load_settings::<NoisePanel>(settings)
+            && s.amplitude.is_finite()
+        {
+            *self = NoisePanel {
+                amplitude: s.amplitude.clamp(0.0, 10.0),
+                ..s
+            };
         }
     }
 }

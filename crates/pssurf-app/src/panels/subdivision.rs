@@ -1,10 +1,11 @@
 //! Dyadic subdivision of a UPS surface (thesis 4.4): exact, the surface is unchanged.
 
-use super::{Panel, PanelContext, needs_ups};
+use super::{Panel, load_settings, needs_ups, replace_selected, save_settings};
+use crate::command::ViewContext;
 use pssurf::surface::Surface;
 
 /// The subdivision dialog.
-#[derive(Debug)]
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
 pub struct SubdivisionPanel {
     /// Subdivision steps per click.
     pub times: usize,
@@ -21,7 +22,7 @@ impl Panel for SubdivisionPanel {
         "Subdivision"
     }
 
-    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut PanelContext<'_>) {
+    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         let Some(u) = cx.uniform() else {
             return needs_ups(ui);
         };
@@ -46,8 +47,18 @@ impl Panel for SubdivisionPanel {
         } else if button.clicked() {
             let s = u.subdivide_times(self.times);
             let vertices = s.grid().vertex_count();
-            cx.replace_surface("subdivide", Surface::from(s));
-            *cx.status = format!("subdivided {} time(s): {vertices} vertices", self.times);
+            let status = format!("subdivided {} time(s): {vertices} vertices", self.times);
+            replace_selected(cx, "subdivide", Surface::from(s), status);
+        }
+    }
+
+    fn settings(&self) -> Option<serde_json::Value> {
+        save_settings(self)
+    }
+
+    fn restore(&mut self, settings: &serde_json::Value) {
+        if let Some(s) = load_settings::<SubdivisionPanel>(settings) {
+            self.times = s.times.clamp(1, 4);
         }
     }
 }

@@ -1,19 +1,27 @@
 //! The UPS wavelet dialog (thesis 4.5, Figure 6.13): the spectrum per level and component,
 //! thresholds, hard or soft, applied as an undoable step.
 
-use super::{Panel, PanelContext, needs_ups};
+use super::{Panel, load_settings, needs_ups, replace_selected, save_settings};
+use crate::command::ViewContext;
 use pssurf::surface::Surface;
 use pssurf::ups::threshold::{LevelStats, Shrink, ThresholdRule};
 
-/// The wavelet dialog.
-#[derive(Debug)]
-pub struct WaveletPanel {
+/// The wavelet dialog's settings.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct WaveletSettings {
     /// Decomposition levels F.
     pub levels: u32,
     /// Threshold in percent of each level's largest coefficient.
     pub percent: f64,
     /// Soft instead of hard thresholding.
     pub soft: bool,
+}
+
+/// The wavelet dialog.
+#[derive(Debug)]
+pub struct WaveletPanel {
+    /// Its settings.
+    pub settings: WaveletSettings,
     /// The spectrum of the selected surface (computed on demand).
     pub spectrum: Option<(u64, Vec<LevelStats>)>,
     /// What the last thresholding did.
@@ -23,9 +31,11 @@ pub struct WaveletPanel {
 impl Default for WaveletPanel {
     fn default() -> Self {
         WaveletPanel {
-            levels: 1,
-            percent: 5.0,
-            soft: true,
+            settings: WaveletSettings {
+                levels: 1,
+                percent: 5.0,
+                soft: true,
+            },
             spectrum: None,
             last: Vec::new(),
         }
@@ -37,7 +47,7 @@ impl Panel for WaveletPanel {
         "Wavelets"
     }
 
-    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut PanelContext<'_>) {
+    fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         let Some(u) = cx.uniform() else {
             return needs_ups(ui);
         };
@@ -47,30 +57,31 @@ impl Panel for WaveletPanel {
             ui.weak("This surface has no coarser level: subdivide it first.");
             return;
         }
-        self.levels = self.levels.clamp(1, available);
+        let settings = &mut self.settings;
+        settings.levels = settings.levels.clamp(1, available);
         egui::Grid::new("wavelet").num_columns(2).show(ui, |ui| {
             ui.label("levels F");
-            ui.add(egui::DragValue::new(&mut self.levels).range(1..=available));
+            ui.add(egui::DragValue::new(&mut settings.levels).range(1..=available));
             ui.end_row();
             ui.label("threshold (% of max)");
             ui.add(
-                egui::DragValue::new(&mut self.percent)
+                egui::DragValue::new(&mut settings.percent)
                     .speed(0.5)
                     .range(0.0..=100.0),
             );
             ui.end_row();
             ui.label("mode");
             ui.horizontal(|ui| {
-                ui.radio_value(&mut self.soft, true, "soft");
-                ui.radio_value(&mut self.soft, false, "hard");
+                ui.radio_value(&mut settings.soft, true, "soft");
+                ui.radio_value(&mut settings.soft, false, "hard");
             });
             ui.end_row();
         });
         let stale = self.spectrum.as_ref().is_none_or(|(r, s)| {
-            *r != revision || s.iter().map(|x| x.level).max() != Some(self.levels as usize)
+            *r != revision || s.iter().map(|x| x.level).max() != Some(self.settings.levels as usize)
         });
         if stale {
-            match u.wavelet_transform(self.levels) {
+            match u.wavelet_transform(self.settings.levels) {
                 Ok(d) => self.spectrum = Some((revision, d.spectrum())),
                 Err(e) => {
                     ui.colored_label(egui::Color32::DARK_RED, e.to_string());
@@ -86,27 +97,43 @@ impl Panel for WaveletPanel {
             "Decompose, threshold every level and component, reconstruct (undo with Ctrl+Z)",
         );
         if apply.clicked() {
-            let rule = ThresholdRule::PercentOfMax(self.percent);
-            let mode = if self.soft {
+            let rule = ThresholdRule::PercentOfMax(self.settings.percent);
+            let mode = if self.settings.soft {
                 Shrink::Soft
             } else {
                 Shrink::Hard
             };
-            match u.denoise(self.levels, |_, _| rule, mode) {
+            match u.denoise(self.settings.levels, |_, _| rule, mode) {
                 Ok((s, stats)) => {
                     let zeroed: usize = stats.iter().map(|s| s.zeroed).sum();
                     let total: usize = stats.iter().map(|s| s.count).sum();
-                    cx.replace_surface("wavelet threshold", Surface::from(s));
-                    *cx.status =
+                    let status =
                         format!("thresholding set {zeroed} of {total} coefficients to zero");
+                    replace_selected(cx, "wavelet threshold", Surface::from(s), status);
                     self.last = stats;
                 }
-                Err(e) => *cx.status = e.to_string(),
+                Err(e) => cx.status(e.to_string()),
             }
         }
         if !self.last.is_empty() {
             ui.label("last thresholding:");
             stats_grid(ui, "last", &self.last, names, true);
+        }
+    }
+
+    fn settings(&self) -> Option<serde_json::Value> {
+        save_settings(&self.settings)
+    }
+
+    fn restore(&mut self, settings: &serde_json::Value) {
+        if let Some(s) = load_settings::<WaveletSettings>(settings)
+            && s.percent.is_finite()
+        {
+            self.settings = WaveletSettings {
+                levels: s.levels.clamp(1, 12),
+                percent: s.percent.clamp(0.0, 100.0),
+                soft: s.soft,
+            };
         }
     }
 }

@@ -45,7 +45,8 @@ pub enum Shading {
 }
 
 /// Lines drawn over the surface.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct Overlays {
     /// The triangulation Δ (its edges on the surface).
     pub wire: bool,
@@ -58,7 +59,8 @@ pub struct Overlays {
 }
 
 /// How the colour range is chosen.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Range {
     /// Automatic: symmetric about 0 for signed quantities (98th percentile of |q|), 1st–99th
     /// percentile otherwise; with the `seed` map, the contrast curve with automatic C.

@@ -1,0 +1,190 @@
+//! The drawable geometry of the scene: one mesh per visible object, kept while the object and
+//! the sampling settings stay the same (keyed by the object's revision), combined into one
+//! buffer for the GPU; a control-point edit rewrites only its support in place.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+use pssurf_viz::colormap::ColorScale;
+
+use crate::display::{self, DisplaySettings, ObjectMesh};
+use crate::gpu::FrameGeometry;
+use crate::scene::{Material, Scene};
+
+/// The geometry of the visible objects, rebuilt only when an object or a display setting
+/// changes.
+#[derive(Default)]
+pub struct GeometryCache {
+    meshes: HashMap<u64, ObjectMesh>,
+    key: Option<(Vec<(u64, bool)>, DisplaySettings)>,
+    /// The combined geometry for the GPU.
+    pub geometry: Arc<FrameGeometry>,
+    /// The colour scale of a curvature plot (for the legend).
+    pub scale: Option<ColorScale>,
+    /// The diameter of the drawn meshes' bounding box at the last rebuild (0 before one).
+    pub diameter: f64,
+    /// Where each visible object lies in `geometry`.
+    pub ranges: Vec<ObjectRange>,
+    /// How many object meshes were sampled since the start (a mesh is sampled again only
+    /// when its object or the sampling settings change).
+    pub sampled: usize,
+}
+
+/// Where one object's data starts in the combined [`FrameGeometry`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ObjectRange {
+    /// The object's index in the scene.
+    pub object: usize,
+    /// Its first surface vertex.
+    pub vertex: usize,
+    /// Its first index.
+    pub index: usize,
+    /// Its first line vertex.
+    pub line: usize,
+}
+
+impl GeometryCache {
+    /// After control group `vertex` of object `object` changed (its revision was `old`),
+    /// updates only `pieces` (the group's support) in the object's mesh and in the combined
+    /// geometry, and records the rewritten ranges for the GPU upload. Does nothing when the
+    /// object was not drawn with these settings (the next [`GeometryCache::update`] then
+    /// rebuilds it). The colour scale of a curvature plot is kept as it was.
+    pub fn update_vertex(
+        &mut self,
+        scene: &Scene,
+        object: usize,
+        old: u64,
+        vertex: usize,
+        pieces: &[usize],
+        display: &DisplaySettings,
+    ) {
+        let Some((key, settings)) = &mut self.key else {
+            return;
+        };
+        let o = &scene.objects[object];
+        let Some(range) = self.ranges.iter().find(|r| r.object == object).copied() else {
+            return;
+        };
+        if settings != display || key.get(object).is_none_or(|k| k.0 != old) {
+            return;
+        }
+        let Some(mut mesh) = self.meshes.remove(&old) else {
+            return;
+        };
+        let map = display::color_map(display);
+        let paint = self.scale.as_ref().map(|s| (&map, s));
+        let changed = display::update_vertex(&mut mesh, o, display, vertex, pieces, paint);
+        let g = Arc::make_mut(&mut self.geometry);
+        let shift = |rs: &[std::ops::Range<usize>], by: usize| -> Vec<std::ops::Range<usize>> {
+            rs.iter().map(|r| r.start + by..r.end + by).collect()
+        };
+        for r in &changed.vertices {
+            g.vertices[r.start + range.vertex..r.end + range.vertex]
+                .copy_from_slice(&mesh.vertices[r.clone()]);
+        }
+        for r in &changed.lines {
+            g.lines[r.start + range.line..r.end + range.line]
+                .copy_from_slice(&mesh.lines[r.clone()]);
+        }
+        g.record(
+            shift(&changed.vertices, range.vertex),
+            shift(&changed.lines, range.line),
+        );
+        key[object].0 = o.revision;
+        self.meshes.insert(o.revision, mesh);
+    }
+
+    /// Rebuilds the geometry if the scene or the display settings changed.
+    pub fn update(&mut self, scene: &Scene, display: &DisplaySettings) {
+        let key: Vec<(u64, bool)> = scene
+            .objects
+            .iter()
+            .map(|o| (o.revision, o.visible))
+            .collect();
+        let current = Some((key.clone(), display.clone()));
+        if self.key == current {
+            return;
+        }
+        // Colour map and range changes only recolour; these need new samples.
+        let sampling_changed = self.key.as_ref().is_none_or(|(_, d)| {
+            d.level != display.level
+                || d.overlays != display.overlays
+                || d.mesh_edges != display.mesh_edges
+                || d.mode != display.mode
+        });
+        if sampling_changed {
+            self.meshes.clear();
+        }
+        let live: std::collections::HashSet<u64> = key.iter().map(|k| k.0).collect();
+        self.meshes.retain(|r, _| live.contains(r));
+        for (_, o) in scene.visible() {
+            if let std::collections::hash_map::Entry::Vacant(slot) = self.meshes.entry(o.revision) {
+                slot.insert(display::object_mesh(o, display));
+                self.sampled += 1;
+            }
+        }
+        let visible: Vec<(usize, u64)> = scene.visible().map(|(i, o)| (i, o.revision)).collect();
+        let diameter = display::bounds(self.meshes.values())
+            .map(|(lo, hi)| (hi - lo).norm() as f64)
+            .unwrap_or(1.0)
+            .max(1e-12);
+        {
+            let materials: HashMap<u64, Material> = scene
+                .objects
+                .iter()
+                .map(|o| (o.revision, o.material))
+                .collect();
+            let mut meshes: Vec<(&mut ObjectMesh, Material)> = self
+                .meshes
+                .iter_mut()
+                .map(|(r, m)| (m, materials.get(r).copied().unwrap_or_default()))
+                .collect();
+            self.scale = display::colorize(&mut meshes, display, diameter);
+        }
+        self.diameter = diameter;
+        let mut g = FrameGeometry {
+            generation: crate::scene::fresh_revision(),
+            ..Default::default()
+        };
+        self.ranges.clear();
+        for (i, r) in visible {
+            let m = &self.meshes[&r];
+            let base = g.vertices.len() as u32;
+            self.ranges.push(ObjectRange {
+                object: i,
+                vertex: g.vertices.len(),
+                index: g.indices.len(),
+                line: g.lines.len(),
+            });
+            g.vertices.extend_from_slice(&m.vertices);
+            g.indices.extend(m.indices.iter().map(|k| k + base));
+            g.lines.extend_from_slice(&m.lines);
+        }
+        self.geometry = Arc::new(g);
+        self.key = current;
+    }
+
+    /// The cached mesh of object `i` of `scene` (after [`GeometryCache::update`]).
+    pub fn object_mesh(&self, scene: &Scene, i: usize) -> Option<&ObjectMesh> {
+        scene
+            .objects
+            .get(i)
+            .and_then(|o| self.meshes.get(&o.revision))
+    }
+
+    /// The diameter of the drawn scene at the last geometry rebuild (1 before one); cheap,
+    /// so the view can use it every frame.
+    pub fn scene_size(&self) -> f64 {
+        if self.diameter > 0.0 {
+            self.diameter
+        } else {
+            1.0
+        }
+    }
+
+    /// The bounds of the drawn meshes, if any.
+    pub fn bounds(&self) -> Option<(Vector3<f32>, Vector3<f32>)> {
+        display::bounds(self.meshes.values())
+    }
+}

@@ -1,0 +1,226 @@
+//! ExportKind views and panels may ask of the application. They read the application through a
+//! [`ViewContext`] and emit [`Command`]s; the application applies them after the frame, in
+//! order. So no view changes the document, the view state or the runtime while another view
+//! is drawing, and every change has one place where it happens (`App::apply`).
+
+use std::path::{Path, PathBuf};
+
+use nalgebra::Point2;
+use pssurf::surface::{Surface, UpsSurface};
+use pssurf_viz::MeshFormat;
+
+use crate::camera::OrbitCamera;
+use crate::display::{DisplaySettings, Light};
+use crate::document::{Document, Selection};
+use crate::edit::VertexControl;
+use crate::probe::{Probe, ProbeSettings};
+use crate::runtime::Runtime;
+use crate::scene::{Material, SceneObject, Transform};
+use crate::state::ViewState;
+
+/// A change to one object's properties (each one undo step).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ObjectEdit {
+    /// A new name.
+    Rename(String),
+    /// A new group ("" for none).
+    Group(String),
+    /// A new material.
+    Material(Material),
+    /// A new placement.
+    Transform(Transform),
+}
+
+/// Which part of the scene to fit into the 3D view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameTarget {
+    /// Every visible object.
+    All,
+    /// The selected object (everything when nothing visible is selected).
+    Selection,
+}
+
+/// What the "New surface" dialog makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// z = the formula.
+    Formula,
+    /// z = a x² + b xy + c y².
+    Quadric,
+}
+
+/// ExportKind to export.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExportKind {
+    /// The selected object's mesh.
+    Mesh,
+    /// The 3D view as a PNG picture.
+    Picture,
+}
+
+/// A request from a view or panel, applied after the frame.
+#[derive(Clone, Debug)]
+pub enum Command {
+    /// Select an object and possibly one of its vertices.
+    Select(Selection),
+    /// Put the probe on an object at parameters `uv` (removes it outside the domain).
+    SetProbe {
+        /// The object's index.
+        object: usize,
+        /// The parameters.
+        uv: Point2<f64>,
+    },
+    /// Remove the probe.
+    RemoveProbe,
+    /// Set a vertex's control points as one undoable edit.
+    SetVertex {
+        /// The object's index.
+        object: usize,
+        /// The vertex (control group).
+        vertex: usize,
+        /// The new control points.
+        control: VertexControl,
+    },
+    /// Start dragging a control point: one undo step for the whole drag.
+    StartDrag,
+    /// A step of a drag: set a vertex's control points without an undo step of its own.
+    DragVertex {
+        /// The object's index.
+        object: usize,
+        /// The vertex (control group).
+        vertex: usize,
+        /// The new control points.
+        control: VertexControl,
+    },
+    /// Change an object's properties.
+    EditObject {
+        /// The object's index.
+        object: usize,
+        /// ExportKind changes.
+        edit: ObjectEdit,
+    },
+    /// Show the hidden and hide the shown among these objects.
+    ToggleVisible(Vec<usize>),
+    /// Delete an object.
+    Delete(usize),
+    /// Add an object and select it.
+    Add(SceneObject),
+    /// Replace an object's surface (a panel's result) as one undoable edit.
+    ReplaceSurface {
+        /// The object's index.
+        object: usize,
+        /// The edit's name for the Edit menu.
+        what: &'static str,
+        /// The new surface.
+        surface: Box<Surface>,
+        /// The status message on success.
+        status: String,
+    },
+    /// Fit part of the scene into the 3D view.
+    Frame(FrameTarget),
+    /// Open a scene or surface file, replacing the document.
+    Open(PathBuf),
+    /// Open the autosaved scene as a new, unnamed document.
+    RecoverAutosave,
+    /// Save the scene.
+    Save(PathBuf),
+    /// Undo the last edit.
+    Undo,
+    /// Redo the last undone edit.
+    Redo,
+    /// New display settings.
+    SetDisplay(DisplaySettings),
+    /// A new light.
+    SetLight(Light),
+    /// New probe settings.
+    SetProbeSettings(ProbeSettings),
+    /// A new camera.
+    SetCamera(OrbitCamera),
+    /// Open the "New surface" dialog on a shape.
+    OpenNewSurface(Shape),
+    /// Open the Export dialog with a suggested file name.
+    OpenExport(ExportKind),
+    /// Write the selected object's mesh.
+    ExportMesh {
+        /// The file.
+        path: PathBuf,
+        /// Its format.
+        format: MeshFormat,
+    },
+    /// Render the 3D view to a PNG file.
+    ExportPicture {
+        /// The file.
+        path: PathBuf,
+        /// The picture's size in pixels.
+        size: [u32; 2],
+    },
+    /// A message for the status bar.
+    Status(String),
+    /// A problem shown in a window until dismissed.
+    Error(String),
+}
+
+/// ExportKind a view or panel sees of the application while it draws, and where its requests go.
+pub struct ViewContext<'a> {
+    /// The document (scene, selection, history).
+    pub doc: &'a Document,
+    /// The view settings.
+    pub view: &'a ViewState,
+    /// The drawable geometry, the probe and the GPU.
+    pub runtime: &'a Runtime,
+    /// Where autosaves go, if anywhere.
+    pub autosave: Option<&'a Path>,
+    commands: &'a mut Vec<Command>,
+}
+
+impl<'a> ViewContext<'a> {
+    /// A context whose commands go to `commands`.
+    pub fn new(
+        doc: &'a Document,
+        view: &'a ViewState,
+        runtime: &'a Runtime,
+        autosave: Option<&'a Path>,
+        commands: &'a mut Vec<Command>,
+    ) -> Self {
+        ViewContext {
+            doc,
+            view,
+            runtime,
+            autosave,
+            commands,
+        }
+    }
+
+    /// Asks the application for something (applied after the frame).
+    pub fn emit(&mut self, command: Command) {
+        self.commands.push(command);
+    }
+
+    /// Sets the status bar's message.
+    pub fn status(&mut self, message: impl Into<String>) {
+        self.emit(Command::Status(message.into()));
+    }
+
+    /// The selected object's index, if it exists.
+    pub fn selected(&self) -> Option<usize> {
+        let i = self.doc.selection.object?;
+        (i < self.doc.scene.objects.len()).then_some(i)
+    }
+
+    /// The selected object.
+    pub fn object(&self) -> Option<&'a SceneObject> {
+        let doc: &'a Document = self.doc;
+        self.selected().map(|i| &doc.scene.objects[i])
+    }
+
+    /// The selected object's uniform (UPS) form, if it has one.
+    pub fn uniform(&self) -> Option<&'a UpsSurface> {
+        self.object().and_then(|o| o.surface.uniform())
+    }
+
+    /// The probe, if one is set.
+    pub fn probe(&self) -> Option<&'a Probe> {
+        let runtime: &'a Runtime = self.runtime;
+        runtime.probe.probe.as_ref()
+    }
+}
