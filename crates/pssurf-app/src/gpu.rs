@@ -218,19 +218,7 @@ impl ViewRenderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("pssurf view uniforms"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            }],
-        });
+        let layout = uniform_layout(device);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("pssurf view uniforms"),
             layout: &layout,
@@ -244,64 +232,8 @@ impl ViewRenderer {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let surface_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4];
-        let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Unorm8x4];
-        let pipeline =
-            |vs: &str, fs: &str, topology, attrs: &[wgpu::VertexAttribute], stride: usize| {
-                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some(vs),
-                    layout: Some(&pipeline_layout),
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some(vs),
-                        buffers: &[Some(wgpu::VertexBufferLayout {
-                            array_stride: stride as u64,
-                            step_mode: wgpu::VertexStepMode::Vertex,
-                            attributes: attrs,
-                        })],
-                        compilation_options: Default::default(),
-                    },
-                    primitive: wgpu::PrimitiveState {
-                        topology,
-                        cull_mode: None,
-                        ..Default::default()
-                    },
-                    depth_stencil: Some(wgpu::DepthStencilState {
-                        format: DEPTH_FORMAT,
-                        depth_write_enabled: Some(true),
-                        depth_compare: Some(wgpu::CompareFunction::LessEqual),
-                        stencil: Default::default(),
-                        bias: Default::default(),
-                    }),
-                    multisample: Default::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some(fs),
-                        targets: &[Some(wgpu::ColorTargetState {
-                            format: COLOR_FORMAT,
-                            blend: None,
-                            write_mask: wgpu::ColorWrites::ALL,
-                        })],
-                        compilation_options: Default::default(),
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                })
-            };
-        let surface = pipeline(
-            "vs_surface",
-            "fs_surface",
-            wgpu::PrimitiveTopology::TriangleList,
-            &surface_attrs,
-            std::mem::size_of::<GpuVertex>(),
-        );
-        let lines = pipeline(
-            "vs_line",
-            "fs_line",
-            wgpu::PrimitiveTopology::LineList,
-            &line_attrs,
-            std::mem::size_of::<LineVertex>(),
-        );
+        let surface = surface_pipeline(device, &module, &pipeline_layout);
+        let lines = line_pipeline(device, &module, &pipeline_layout);
         ViewRenderer {
             surface,
             lines,
@@ -462,6 +394,119 @@ impl ViewRenderer {
     fn color_view(&self) -> Option<&wgpu::TextureView> {
         self.target.as_ref().map(|t| &t.color_view)
     }
+}
+
+/// The layout of the view's bind group: the uniform buffer, seen by both shader stages.
+fn uniform_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("pssurf view uniforms"),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        }],
+    })
+}
+
+/// What sets a view pipeline apart: shader entry points, primitive topology, vertex layout.
+struct PipelineSpec<'a> {
+    /// The vertex shader's entry point (also the pipeline's label).
+    vertex: &'a str,
+    /// The fragment shader's entry point.
+    fragment: &'a str,
+    /// Triangles or lines.
+    topology: wgpu::PrimitiveTopology,
+    /// The vertex attributes.
+    attributes: &'a [wgpu::VertexAttribute],
+    /// The size of one vertex in bytes.
+    stride: usize,
+}
+
+/// The pipeline that draws surfaces: triangles of [`GpuVertex`] (position, normal, colour).
+fn surface_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    layout: &wgpu::PipelineLayout,
+) -> wgpu::RenderPipeline {
+    let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4];
+    let spec = PipelineSpec {
+        vertex: "vs_surface",
+        fragment: "fs_surface",
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        attributes: &attributes,
+        stride: std::mem::size_of::<GpuVertex>(),
+    };
+    view_pipeline(device, module, layout, &spec)
+}
+
+/// The pipeline that draws overlay lines: line segments of [`LineVertex`] (position, colour).
+fn line_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    layout: &wgpu::PipelineLayout,
+) -> wgpu::RenderPipeline {
+    let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Unorm8x4];
+    let spec = PipelineSpec {
+        vertex: "vs_line",
+        fragment: "fs_line",
+        topology: wgpu::PrimitiveTopology::LineList,
+        attributes: &attributes,
+        stride: std::mem::size_of::<LineVertex>(),
+    };
+    view_pipeline(device, module, layout, &spec)
+}
+
+/// A view-shader pipeline into the offscreen target: no culling, depth test, no blending.
+fn view_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    layout: &wgpu::PipelineLayout,
+    spec: &PipelineSpec,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(spec.vertex),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some(spec.vertex),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: spec.stride as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: spec.attributes,
+            })],
+            compilation_options: Default::default(),
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: spec.topology,
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::LessEqual),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(spec.fragment),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: COLOR_FORMAT,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+            compilation_options: Default::default(),
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 /// Draws the offscreen target into egui's pass.

@@ -67,6 +67,9 @@ pub fn ticks(scale: &ColorScale) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The legend's ink: title, frame, tick marks and labels.
+const INK: [u8; 3] = [20, 20, 20];
+
 /// Draws the legend into `area` of the picture: the title (wrapped at spaces) at the top, a
 /// vertical colour bar (value increasing upwards) with tick marks and labels.
 pub fn draw_legend(
@@ -78,28 +81,12 @@ pub fn draw_legend(
     scale: &ColorScale,
 ) {
     let font = (area.w / 9.0).clamp(11.0, 18.0);
-    let ink = [20, 20, 20];
     let style = TextStyle {
         size: font,
-        color: ink,
+        color: INK,
         align: Align::Left,
     };
-    // Title, wrapped to the area's width.
-    let mut lines: Vec<String> = Vec::new();
-    for word in title.split_whitespace() {
-        match lines.last_mut() {
-            Some(l) if text_width(&format!("{l} {word}"), font) <= area.w - 4.0 => {
-                l.push(' ');
-                l.push_str(word);
-            }
-            _ => lines.push(word.to_string()),
-        }
-    }
-    let mut y = area.y + font;
-    for l in &lines {
-        draw_text(image, width, area.x + 2.0, y, l, &style);
-        y += font * 1.2;
-    }
+    let y = draw_title(image, width, area, title, &style);
     let bar = Rect {
         x: area.x + 4.0,
         y: y + 0.5 * font,
@@ -107,8 +94,68 @@ pub fn draw_legend(
         h: (area.y + area.h - y - 1.5 * font).max(10.0),
     };
     let height = image.len() / width.max(1);
-    let (x0, x1) = (bar.x.round() as usize, (bar.x + bar.w).round() as usize);
-    let (y0, y1) = (bar.y.round() as usize, (bar.y + bar.h).round() as usize);
+    let pixels = BarPixels::of(&bar);
+    fill_bar(image, width, height, pixels, map);
+    draw_frame(image, width, height, pixels);
+    draw_ticks(image, width, height, &bar, scale, &style);
+}
+
+/// The words of `title` in lines at most `max_width` wide at font size `font`.
+fn wrap_title(title: &str, font: f32, max_width: f32) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in title.split_whitespace() {
+        match lines.last_mut() {
+            Some(l) if text_width(&format!("{l} {word}"), font) <= max_width => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// Draws the title wrapped to the area's width at its top; returns the baseline below it.
+fn draw_title(
+    image: &mut [[u8; 3]],
+    width: usize,
+    area: Rect,
+    title: &str,
+    style: &TextStyle,
+) -> f32 {
+    let font = style.size;
+    let mut y = area.y + font;
+    for l in &wrap_title(title, font, area.w - 4.0) {
+        draw_text(image, width, area.x + 2.0, y, l, style);
+        y += font * 1.2;
+    }
+    y
+}
+
+/// The colour bar's edges rounded to whole pixels: columns `x0..x1`, rows `y0..y1`.
+#[derive(Clone, Copy, Debug)]
+struct BarPixels {
+    x0: usize,
+    x1: usize,
+    y0: usize,
+    y1: usize,
+}
+
+impl BarPixels {
+    /// The pixel edges of the bar's rectangle.
+    fn of(bar: &Rect) -> Self {
+        BarPixels {
+            x0: bar.x.round() as usize,
+            x1: (bar.x + bar.w).round() as usize,
+            y0: bar.y.round() as usize,
+            y1: (bar.y + bar.h).round() as usize,
+        }
+    }
+}
+
+/// Fills the bar with the colour map, from its end at the top to its start at the bottom.
+fn fill_bar(image: &mut [[u8; 3]], width: usize, height: usize, bar: BarPixels, map: &ColorMap) {
+    let BarPixels { x0, x1, y0, y1 } = bar;
     for row in y0..y1.min(height) {
         let t = 1.0 - (row - y0) as f64 / (y1 - y0).max(1) as f64;
         let c = map.at(t);
@@ -116,21 +163,37 @@ pub fn draw_legend(
             image[row * width + col] = c;
         }
     }
-    // A thin frame.
+}
+
+/// Draws a thin frame of ink one pixel outside the bar.
+fn draw_frame(image: &mut [[u8; 3]], width: usize, height: usize, bar: BarPixels) {
+    let BarPixels { x0, x1, y0, y1 } = bar;
     for row in y0.saturating_sub(1)..(y1 + 1).min(height) {
         for col in [x0.saturating_sub(1), x1] {
             if col < width {
-                image[row * width + col] = ink;
+                image[row * width + col] = INK;
             }
         }
     }
     for col in x0.saturating_sub(1)..(x1 + 1).min(width) {
         for row in [y0.saturating_sub(1), y1] {
             if row < height {
-                image[row * width + col] = ink;
+                image[row * width + col] = INK;
             }
         }
     }
+}
+
+/// Draws the scale's ticks right of the bar: a 5-pixel mark and the value's label at each.
+fn draw_ticks(
+    image: &mut [[u8; 3]],
+    width: usize,
+    height: usize,
+    bar: &Rect,
+    scale: &ColorScale,
+    style: &TextStyle,
+) {
+    let x1 = BarPixels::of(bar).x1;
     let ticks = ticks(scale);
     let step = if ticks.len() > 1 {
         ticks[1].0 - ticks[0].0
@@ -141,16 +204,16 @@ pub fn draw_legend(
         let row = (bar.y + (1.0 - t as f32) * bar.h).round();
         for col in x1..(x1 + 5).min(width) {
             if (row as usize) < height {
-                image[row as usize * width + col] = ink;
+                image[row as usize * width + col] = INK;
             }
         }
         draw_text(
             image,
             width,
             bar.x + bar.w + 8.0,
-            row + 0.35 * font,
+            row + 0.35 * style.size,
             &format_tick(v, step),
-            &style,
+            style,
         );
     }
 }

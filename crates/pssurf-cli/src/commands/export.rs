@@ -3,8 +3,9 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, anyhow, bail};
-use pssurf::interrogate::{CurvatureQuantity, sample_patches};
+use pssurf::interrogate::{CurvatureQuantity, SampledSurface, sample_patches};
 use pssurf::io::{Durability, atomic_write};
+use pssurf::surface::Surface;
 use pssurf_viz::plot::range_scale;
 use pssurf_viz::{FieldMesh, MeshFormat};
 
@@ -39,30 +40,12 @@ pub struct ExportArgs {
 
 /// Runs `pssurf export`.
 pub fn run(args: &ExportArgs) -> Result<()> {
-    let name = match &args.format {
-        Some(f) => f.clone(),
-        None => args
-            .output
-            .extension()
-            .and_then(|e| e.to_str())
-            .unwrap_or("")
-            .to_string(),
-    };
+    let name = format_name(args);
     let format = MeshFormat::parse(&name).ok_or_else(|| anyhow!("unknown mesh format `{name}` (ply, obj, stl, glb, vtk); give --format or a known extension"))?;
     if args.level > 7 {
         bail!("--level is at most 7");
     }
-    let fields: Vec<CurvatureQuantity> = match &args.fields {
-        None => CurvatureQuantity::ALL.to_vec(),
-        Some(v) if v.len() == 1 && v[0] == "none" => Vec::new(),
-        Some(v) => v
-            .iter()
-            .map(|s| quantity(s).map_err(|e| anyhow!(e)))
-            .collect::<Result<_>>()?,
-    };
-    if !format.carries_fields() && args.fields.is_some() && !fields.is_empty() {
-        bail!("{name} files cannot store scalar fields; use ply, glb or vtk (or --fields none)");
-    }
+    let fields = requested_fields(args, format, &name)?;
     let surface = pssurf::io::load(&args.surface)?;
     let sampled = sample_patches(&surface, args.level, true);
     let field_values: Vec<(String, Vec<f64>)> = if format.carries_fields() {
@@ -74,22 +57,7 @@ pub fn run(args: &ExportArgs) -> Result<()> {
         Vec::new()
     };
     let colors = if format.carries_colors() {
-        let values = sampled.quantity(args.color_by);
-        let map = args.colors.map(args.color_by)?;
-        let (lo, hi) = pssurf::surface::ParametricSurface::domain_bounds(&surface);
-        let scale = range_scale(
-            args.colors.range()?,
-            &map,
-            args.color_by,
-            &values,
-            (hi - lo).norm(),
-        );
-        Some(
-            values
-                .iter()
-                .map(|&v| map.at(scale.position(v)))
-                .collect::<Vec<_>>(),
-        )
+        Some(vertex_colors(args, &surface, &sampled)?)
     } else {
         None
     };
@@ -102,7 +70,72 @@ pub fn run(args: &ExportArgs) -> Result<()> {
         pssurf_viz::write_mesh(w, format, &mesh).map_err(|e| anyhow!(e))
     })
     .with_context(|| format!("writing {}", args.output.display()))?;
-    eprintln!(
+    eprintln!("{}", summary(args, &sampled, &field_values));
+    Ok(())
+}
+
+/// The format's name: `--format`, else the output's extension.
+fn format_name(args: &ExportArgs) -> String {
+    match &args.format {
+        Some(f) => f.clone(),
+        None => args
+            .output
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_string(),
+    }
+}
+
+/// The fields asked for by `--fields` (default all); an error if the format cannot store them.
+fn requested_fields(
+    args: &ExportArgs,
+    format: MeshFormat,
+    name: &str,
+) -> Result<Vec<CurvatureQuantity>> {
+    let fields: Vec<CurvatureQuantity> = match &args.fields {
+        None => CurvatureQuantity::ALL.to_vec(),
+        Some(v) if v.len() == 1 && v[0] == "none" => Vec::new(),
+        Some(v) => v
+            .iter()
+            .map(|s| quantity(s).map_err(|e| anyhow!(e)))
+            .collect::<Result<_>>()?,
+    };
+    if !format.carries_fields() && args.fields.is_some() && !fields.is_empty() {
+        bail!("{name} files cannot store scalar fields; use ply, glb or vtk (or --fields none)");
+    }
+    Ok(fields)
+}
+
+/// The vertex colours: the `--color-by` quantity through the colour map and range.
+fn vertex_colors(
+    args: &ExportArgs,
+    surface: &Surface,
+    sampled: &SampledSurface,
+) -> Result<Vec<[u8; 3]>> {
+    let values = sampled.quantity(args.color_by);
+    let map = args.colors.map(args.color_by)?;
+    let (lo, hi) = pssurf::surface::ParametricSurface::domain_bounds(surface);
+    let scale = range_scale(
+        args.colors.range()?,
+        &map,
+        args.color_by,
+        &values,
+        (hi - lo).norm(),
+    );
+    Ok(values
+        .iter()
+        .map(|&v| map.at(scale.position(v)))
+        .collect::<Vec<_>>())
+}
+
+/// The report line: the file written, its vertex and triangle counts and its fields.
+fn summary(
+    args: &ExportArgs,
+    sampled: &SampledSurface,
+    field_values: &[(String, Vec<f64>)],
+) -> String {
+    format!(
         "wrote {} ({} vertices, {} triangles{})",
         args.output.display(),
         sampled.mesh.positions.len(),
@@ -119,6 +152,5 @@ pub fn run(args: &ExportArgs) -> Result<()> {
                     .join(",")
             )
         }
-    );
-    Ok(())
+    )
 }

@@ -4,6 +4,7 @@
 
 use nalgebra::{Point2, Vector3};
 use pssurf::interrogate::{CurvatureQuantity, SampledSurface, sample_patches};
+use pssurf::mesh::TriMesh;
 use pssurf::surface::Surface;
 use rayon::prelude::*;
 
@@ -201,32 +202,11 @@ pub fn plot_sampled(sampled: &SampledSurface, lines: &[Polyline], opts: &PlotOpt
         Show::Quantity(q) => Some(sampled.quantity(q)),
         _ => None,
     };
-    let diameter = {
-        let c = bounding_corners(mesh.positions.iter());
-        if c.is_empty() {
-            1.0
-        } else {
-            (c[7] - c[0]).norm().max(1e-300)
-        }
-    };
+    let diameter = surface_diameter(&mesh.positions);
     let scale = values.as_ref().map(|v| resolve_scale(opts, v, diameter));
-    let legend_w = if scale.is_some() && opts.legend {
-        (width as f64 * 0.17)
-            .clamp(110.0, 240.0)
-            .min(width as f64 * 0.5)
-    } else {
-        0.0
-    };
+    let legend_w = legend_width(width, scale.is_some() && opts.legend);
     let area_w = width as f64 - legend_w;
-    // The scene: the surface and the lines.
-    let mut extent: Vec<Vector3<f64>> = bounding_corners(
-        mesh.positions
-            .iter()
-            .chain(lines.iter().flat_map(|l| l.points.iter())),
-    );
-    if extent.is_empty() {
-        extent.push(Vector3::zeros());
-    }
+    let extent = scene_extent(&mesh.positions, lines);
     let view = View::fit(
         &opts.camera,
         &extent,
@@ -234,22 +214,11 @@ pub fn plot_sampled(sampled: &SampledSurface, lines: &[Polyline], opts: &PlotOpt
         height as f64,
         Point2::new(0.5 * area_w, 0.5 * height as f64),
     );
-    let key = |p: &crate::camera::Projected| match opts.camera.projection {
-        Projection::Orthographic => p.depth as f32,
-        Projection::Perspective { .. } => p.inv_w as f32,
-    };
+    let projection = opts.camera.projection;
     let screen: Vec<ScreenVertex> = mesh
         .positions
         .par_iter()
-        .map(|p| {
-            let q = view.project(p);
-            ScreenVertex {
-                x: q.x as f32,
-                y: q.y as f32,
-                z: key(&q),
-                inv_w: q.inv_w as f32,
-            }
-        })
+        .map(|p| screen_vertex(projection, &view.project(p)))
         .collect();
     let g = rasterize(&screen, &mesh.triangles, width, height);
     let mut pixels = vec![opts.background; width * height];
@@ -264,33 +233,7 @@ pub fn plot_sampled(sampled: &SampledSurface, lines: &[Polyline], opts: &PlotOpt
         &view,
         &light,
     );
-    // Lines, hidden behind nearer parts of the surface.
-    let diameter = (extent[extent.len() - 1] - extent[0]).norm().max(1e-300);
-    let tolerance = match opts.camera.projection {
-        Projection::Orthographic => 0.004 * diameter,
-        Projection::Perspective { .. } => {
-            let q = view.project(&(0.5 * (extent[0] + extent[extent.len() - 1])));
-            0.004 * diameter * q.inv_w * q.inv_w
-        }
-    } as f32;
-    for l in lines {
-        for w in l.points.windows(2) {
-            let (a, b) = (view.project(&w[0]), view.project(&w[1]));
-            let sa = ScreenVertex {
-                x: a.x as f32,
-                y: a.y as f32,
-                z: key(&a),
-                inv_w: a.inv_w as f32,
-            };
-            let sb = ScreenVertex {
-                x: b.x as f32,
-                y: b.y as f32,
-                z: key(&b),
-                inv_w: b.inv_w as f32,
-            };
-            draw_segment(&g, &mut pixels, sa, sb, l.color, l.thickness, tolerance);
-        }
-    }
+    draw_lines(&g, &mut pixels, lines, &view, projection, &extent);
     if let (Some(s), true, Show::Quantity(q)) = (&scale, opts.legend, opts.show) {
         let area = Rect {
             x: area_w as f32 + 6.0,
@@ -306,6 +249,80 @@ pub fn plot_sampled(sampled: &SampledSurface, lines: &[Polyline], opts: &PlotOpt
         pixels,
         scale,
         triangles: mesh.triangles.len(),
+    }
+}
+
+/// The diagonal of the bounding box of the surface's points (1 when there are none).
+fn surface_diameter(positions: &[Vector3<f64>]) -> f64 {
+    let c = bounding_corners(positions.iter());
+    if c.is_empty() {
+        1.0
+    } else {
+        (c[7] - c[0]).norm().max(1e-300)
+    }
+}
+
+/// The width in pixels kept for the legend at the right of the picture (0 without one).
+fn legend_width(width: usize, with_legend: bool) -> f64 {
+    if with_legend {
+        (width as f64 * 0.17)
+            .clamp(110.0, 240.0)
+            .min(width as f64 * 0.5)
+    } else {
+        0.0
+    }
+}
+
+/// The bounding-box corners of the surface and the lines (the origin when nothing is finite).
+fn scene_extent(positions: &[Vector3<f64>], lines: &[Polyline]) -> Vec<Vector3<f64>> {
+    let mut extent: Vec<Vector3<f64>> = bounding_corners(
+        positions
+            .iter()
+            .chain(lines.iter().flat_map(|l| l.points.iter())),
+    );
+    if extent.is_empty() {
+        extent.push(Vector3::zeros());
+    }
+    extent
+}
+
+/// A projected point as a screen vertex, keyed by view depth (orthographic) or 1/w (perspective).
+fn screen_vertex(projection: Projection, q: &crate::camera::Projected) -> ScreenVertex {
+    let z = match projection {
+        Projection::Orthographic => q.depth as f32,
+        Projection::Perspective { .. } => q.inv_w as f32,
+    };
+    ScreenVertex {
+        x: q.x as f32,
+        y: q.y as f32,
+        z,
+        inv_w: q.inv_w as f32,
+    }
+}
+
+/// Draws the lines over the surface, hidden behind nearer parts (tolerance: 0.4 % of the scene).
+fn draw_lines(
+    g: &GBuffer,
+    pixels: &mut [[u8; 3]],
+    lines: &[Polyline],
+    view: &View,
+    projection: Projection,
+    extent: &[Vector3<f64>],
+) {
+    let diameter = (extent[extent.len() - 1] - extent[0]).norm().max(1e-300);
+    let tolerance = match projection {
+        Projection::Orthographic => 0.004 * diameter,
+        Projection::Perspective { .. } => {
+            let q = view.project(&(0.5 * (extent[0] + extent[extent.len() - 1])));
+            0.004 * diameter * q.inv_w * q.inv_w
+        }
+    } as f32;
+    for l in lines {
+        for w in l.points.windows(2) {
+            let sa = screen_vertex(projection, &view.project(&w[0]));
+            let sb = screen_vertex(projection, &view.project(&w[1]));
+            draw_segment(g, pixels, sa, sb, l.color, l.thickness, tolerance);
+        }
     }
 }
 
@@ -393,11 +410,25 @@ impl Light {
         let spec = n.dot(&h).max(0.0).powi(48);
         (0.12 + 0.95 * diffuse, 0.3 * spec)
     }
+
+    /// The colour `base` lit at `p` with normal `n`; seen from the back, FRONT becomes BACK.
+    fn lit_color(&self, view: &View, base: [f64; 3], n: Vector3<f64>, p: &Vector3<f64>) -> [u8; 3] {
+        let to_eye = -view.view_direction(p);
+        let (n, back) = if n.dot(&to_eye) >= 0.0 {
+            (n, false)
+        } else {
+            (-n, true)
+        };
+        let (b, s) = self.light(n, to_eye);
+        let base = if back && base == FRONT { BACK } else { base };
+        base.map(|c| (c * b + 255.0 * s).clamp(0.0, 255.0) as u8)
+    }
 }
 
 const FRONT: [f64; 3] = [150.0, 170.0, 205.0];
 const BACK: [f64; 3] = [205.0, 170.0, 140.0];
 
+/// Colours every pixel that the G-buffer covers by what the picture shows.
 #[allow(clippy::too_many_arguments)]
 fn shade(
     g: &GBuffer,
@@ -410,24 +441,13 @@ fn shade(
     light: &Light,
 ) {
     let mesh = &sampled.mesh;
-    let lit_color = |base: [f64; 3], n: Vector3<f64>, p: &Vector3<f64>| -> [u8; 3] {
-        let to_eye = -view.view_direction(p);
-        let (n, back) = if n.dot(&to_eye) >= 0.0 {
-            (n, false)
-        } else {
-            (-n, true)
-        };
-        let (b, s) = light.light(n, to_eye);
-        let base = if back && base == FRONT { BACK } else { base };
-        base.map(|c| (c * b + 255.0 * s).clamp(0.0, 255.0) as u8)
-    };
     // Gouraud: light the vertices once.
     let vertex_colors: Vec<[u8; 3]> =
         if opts.shading == Shading::Gouraud && matches!(opts.show, Show::Shaded) {
             mesh.positions
                 .par_iter()
                 .zip(&mesh.normals)
-                .map(|(p, n)| lit_color(FRONT, *n, p))
+                .map(|(p, n)| light.lit_color(view, FRONT, *n, p))
                 .collect()
         } else {
             Vec::new()
@@ -438,80 +458,127 @@ fn shade(
         let a = opts.bands.angle_deg.to_radians();
         view.right * a.cos() + view.up * a.sin()
     };
-    let band_width = opts.bands.width_deg.to_radians().max(1e-6);
-    shade_pixels(g, pixels, |t, b| {
-        let [i, j, k] = mesh.triangles[t as usize].map(|x| x as usize);
+    let shader = PixelShader {
+        mesh,
+        values,
+        scale,
+        opts,
+        view,
+        light,
+        vertex_colors,
+        band_axis,
+        band_width: opts.bands.width_deg.to_radians().max(1e-6),
+    };
+    shade_pixels(g, pixels, |t, b| shader.pixel(t, b));
+}
+
+/// Colours pixels from the mesh, its values, the options, the view and the light.
+struct PixelShader<'a> {
+    mesh: &'a TriMesh,
+    values: Option<&'a [f64]>,
+    scale: Option<&'a ColorScale>,
+    opts: &'a PlotOptions,
+    view: &'a View,
+    light: &'a Light,
+    /// The colours lit at the vertices for Gouraud shading (empty otherwise).
+    vertex_colors: Vec<[u8; 3]>,
+    /// The axis of the zebra environment's bands of latitude.
+    band_axis: Vector3<f64>,
+    /// The angular width of one zebra or isophote band, in radians.
+    band_width: f64,
+}
+
+impl PixelShader<'_> {
+    /// The colour of the point with barycentric coordinates `b` in mesh triangle `t`.
+    fn pixel(&self, t: u32, b: [f32; 3]) -> [u8; 3] {
+        let corners = self.mesh.triangles[t as usize].map(|x| x as usize);
+        let [i, j, k] = corners;
         let b = b.map(|x| x as f64);
-        let p = mesh.positions[i] * b[0] + mesh.positions[j] * b[1] + mesh.positions[k] * b[2];
-        let normal = || -> Vector3<f64> {
-            match opts.shading {
-                Shading::Flat => {
-                    let (a, bb, c) = (mesh.positions[i], mesh.positions[j], mesh.positions[k]);
-                    (bb - a)
-                        .cross(&(c - a))
-                        .try_normalize(0.0)
-                        .unwrap_or_default()
-                }
-                _ => (mesh.normals[i] * b[0] + mesh.normals[j] * b[1] + mesh.normals[k] * b[2])
-                    .try_normalize(0.0)
-                    .unwrap_or_default(),
-            }
-        };
-        match opts.show {
-            Show::Shaded => {
-                if !vertex_colors.is_empty() {
-                    let (ci, cj, ck) = (vertex_colors[i], vertex_colors[j], vertex_colors[k]);
-                    std::array::from_fn(|c| {
-                        (ci[c] as f64 * b[0] + cj[c] as f64 * b[1] + ck[c] as f64 * b[2]).round()
-                            as u8
-                    })
-                } else {
-                    lit_color(FRONT, normal(), &p)
-                }
-            }
-            Show::Quantity(_) => {
-                let v = values.expect("values for quantities");
-                let q = v[i] * b[0] + v[j] * b[1] + v[k] * b[2];
-                let s = scale.expect("a scale for quantities");
-                let c = opts.colormap.at(s.position(q));
-                if opts.lit {
-                    let to_eye = -view.view_direction(&p);
-                    let n = normal();
-                    let n = if n.dot(&to_eye) >= 0.0 { n } else { -n };
-                    let (br, sp) = light.light(n, to_eye);
-                    c.map(|x| {
-                        (x as f64 * (0.35 + 0.65 * br) + 255.0 * sp * 0.5).clamp(0.0, 255.0) as u8
-                    })
-                } else {
-                    c
-                }
-            }
-            Show::Zebra => {
-                let d = view.view_direction(&p);
-                let n = normal();
-                let n = if n.dot(&d) <= 0.0 { n } else { -n };
-                let r = d - 2.0 * d.dot(&n) * n;
-                // Bands of latitude around the axis: the reflection of a striped environment.
-                let theta = r.dot(&band_axis).clamp(-1.0, 1.0).acos();
-                if (theta / band_width).floor() as i64 % 2 == 0 {
-                    [20, 20, 20]
-                } else {
-                    [245, 245, 245]
-                }
-            }
-            Show::Isophotes => {
-                let to_eye = -view.view_direction(&p);
-                let n = normal();
-                let n = if n.dot(&to_eye) >= 0.0 { n } else { -n };
-                let theta = n.dot(&light.dir).clamp(-1.0, 1.0).acos();
-                if (theta / band_width).floor() as i64 % 2 == 0 {
-                    [30, 30, 90]
-                } else {
-                    [235, 235, 200]
-                }
-            }
+        let p = self.mesh.positions[i] * b[0]
+            + self.mesh.positions[j] * b[1]
+            + self.mesh.positions[k] * b[2];
+        match self.opts.show {
+            Show::Shaded => self.shaded(corners, b, &p),
+            Show::Quantity(_) => self.quantity(corners, b, &p),
+            Show::Zebra => self.zebra(corners, b, &p),
+            Show::Isophotes => self.isophote(corners, b, &p),
         }
-    });
+    }
+
+    /// The unit normal at `b` in a triangle: its own (flat shading) or the vertex normals blended.
+    fn normal(&self, [i, j, k]: [usize; 3], b: [f64; 3]) -> Vector3<f64> {
+        let mesh = self.mesh;
+        match self.opts.shading {
+            Shading::Flat => {
+                let (a, bb, c) = (mesh.positions[i], mesh.positions[j], mesh.positions[k]);
+                (bb - a)
+                    .cross(&(c - a))
+                    .try_normalize(0.0)
+                    .unwrap_or_default()
+            }
+            _ => (mesh.normals[i] * b[0] + mesh.normals[j] * b[1] + mesh.normals[k] * b[2])
+                .try_normalize(0.0)
+                .unwrap_or_default(),
+        }
+    }
+
+    /// The lit neutral colour at `p`: Gouraud vertex colours blended, or lit per pixel.
+    fn shaded(&self, corners: [usize; 3], b: [f64; 3], p: &Vector3<f64>) -> [u8; 3] {
+        if !self.vertex_colors.is_empty() {
+            let [ci, cj, ck] = corners.map(|v| self.vertex_colors[v]);
+            std::array::from_fn(|c| {
+                (ci[c] as f64 * b[0] + cj[c] as f64 * b[1] + ck[c] as f64 * b[2]).round() as u8
+            })
+        } else {
+            self.light
+                .lit_color(self.view, FRONT, self.normal(corners, b), p)
+        }
+    }
+
+    /// The colour map's colour of the interpolated quantity at `p`, lit if asked.
+    fn quantity(&self, [i, j, k]: [usize; 3], b: [f64; 3], p: &Vector3<f64>) -> [u8; 3] {
+        let v = self.values.expect("values for quantities");
+        let q = v[i] * b[0] + v[j] * b[1] + v[k] * b[2];
+        let s = self.scale.expect("a scale for quantities");
+        let c = self.opts.colormap.at(s.position(q));
+        if self.opts.lit {
+            let to_eye = -self.view.view_direction(p);
+            let n = self.normal([i, j, k], b);
+            let n = if n.dot(&to_eye) >= 0.0 { n } else { -n };
+            let (br, sp) = self.light.light(n, to_eye);
+            c.map(|x| (x as f64 * (0.35 + 0.65 * br) + 255.0 * sp * 0.5).clamp(0.0, 255.0) as u8)
+        } else {
+            c
+        }
+    }
+
+    /// The zebra stripe at `p`: dark or light by the band the reflected view ray points into.
+    fn zebra(&self, corners: [usize; 3], b: [f64; 3], p: &Vector3<f64>) -> [u8; 3] {
+        let d = self.view.view_direction(p);
+        let n = self.normal(corners, b);
+        let n = if n.dot(&d) <= 0.0 { n } else { -n };
+        let r = d - 2.0 * d.dot(&n) * n;
+        // Bands of latitude around the axis: the reflection of a striped environment.
+        let theta = r.dot(&self.band_axis).clamp(-1.0, 1.0).acos();
+        if (theta / self.band_width).floor() as i64 % 2 == 0 {
+            [20, 20, 20]
+        } else {
+            [245, 245, 245]
+        }
+    }
+
+    /// The isophote band at `p`: dark or light by the angle between the normal and the light.
+    fn isophote(&self, corners: [usize; 3], b: [f64; 3], p: &Vector3<f64>) -> [u8; 3] {
+        let to_eye = -self.view.view_direction(p);
+        let n = self.normal(corners, b);
+        let n = if n.dot(&to_eye) >= 0.0 { n } else { -n };
+        let theta = n.dot(&self.light.dir).clamp(-1.0, 1.0).acos();
+        if (theta / self.band_width).floor() as i64 % 2 == 0 {
+            [30, 30, 90]
+        } else {
+            [235, 235, 200]
+        }
+    }
 }
 
 #[cfg(test)]

@@ -42,69 +42,31 @@ pub struct Row {
     pub zeroed_percent: Option<f64>,
 }
 
+/// The sampling level of the gallery's plots.
+const LEVEL: u32 = 2;
+
 /// Runs `pssurf showcase`.
 pub fn run(args: &ShowcaseArgs) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let started = std::time::Instant::now();
     let variants = experiment::variants();
-    let steps = variants.len() as u64 * 5 + 4;
-    let bar = ProgressBar::new(steps).with_style(
-        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {msg}")
-            .expect("a valid template"),
-    );
+    let bar = progress_bar(variants.len() as u64 * 5 + 4);
     let original = &variants[0].surface;
     let points = experiment::sample_points(original, 4000);
-    // One colour scale per quantity for all pictures, from the original surface, so that
-    // colours mean the same values everywhere: the seed's map with its contrast curve.
     let seed = ColorMap::named("seed")?;
-    let level = 2;
-    let reference = sample_patches(original, level, true);
-    let diameter = pssurf::surface::ParametricSurface::domain_bounds(original);
-    let diameter = (diameter.1 - diameter.0).norm();
-    let scale_of = |q| range_scale(Range::Auto, &seed, q, &reference.quantity(q), diameter);
-    let (k_scale, h_scale) = (
-        scale_of(CurvatureQuantity::Gaussian),
-        scale_of(CurvatureQuantity::Mean),
-    );
+    let scales = SharedScales::of(original, &seed);
     let base = PlotOptions {
         width: args.size.0,
         height: args.size.1,
-        level,
+        level: LEVEL,
         camera: Camera::default(),
         colormap: seed.clone(),
         ..PlotOptions::default()
     };
     let mut rows = Vec::new();
     for v in &variants {
-        bar.set_message(format!("{}: sampling", v.key));
-        let sampled = sample_patches(&v.surface, level, true);
-        bar.inc(1);
-        let mut pictures: [String; 4] = Default::default();
-        for (k, (show, scale)) in [
-            (Show::Shaded, None),
-            (Show::Quantity(CurvatureQuantity::Gaussian), Some(k_scale)),
-            (Show::Quantity(CurvatureQuantity::Mean), Some(h_scale)),
-            (Show::Zebra, None),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            let name = format!(
-                "{}_{}.png",
-                v.key,
-                ["shaded", "gaussian", "mean", "zebra"][k]
-            );
-            bar.set_message(format!("{}: {name}", v.key));
-            let opts = PlotOptions {
-                show,
-                range: fixed(scale),
-                ..base.clone()
-            };
-            write_png(&plot_sampled(&sampled, &[], &opts), &args.out.join(&name))?;
-            pictures[k] = name;
-            bar.inc(1);
-        }
+        let pictures = variant_pictures(v, &base, &scales, &args.out, &bar)?;
         bar.set_message(format!("{}: comparing", v.key));
         rows.push(Row {
             title: v.title.clone(),
@@ -113,23 +75,12 @@ pub fn run(args: &ShowcaseArgs) -> Result<()> {
             zeroed_percent: v.zeroed_percent,
         });
     }
-    bar.set_message("basis function");
-    let basis = experiment::basis_function();
-    let basis_pictures = basis_pictures(&basis, &base, &args.out)?;
-    bar.inc(2);
-    bar.set_message("domain pictures");
-    write_domain(
-        original,
-        Some(CurvatureQuantity::Mean),
-        &args.out.join("domain_original.svg"),
-    )?;
-    write_domain(&basis, None, &args.out.join("domain_basis.svg"))?;
-    bar.inc(1);
+    let basis_pictures = write_basis_and_domains(original, &base, &args.out, &bar)?;
     let page = html::page(
         &rows,
         &basis_pictures,
-        &k_scale,
-        &h_scale,
+        &scales.gaussian,
+        &scales.mean,
         started.elapsed().as_secs_f64(),
     );
     let index = args.out.join("index.html");
@@ -143,6 +94,100 @@ pub fn run(args: &ShowcaseArgs) -> Result<()> {
         index.display()
     );
     Ok(())
+}
+
+/// A progress bar of `steps` steps with the elapsed time and a message.
+fn progress_bar(steps: u64) -> ProgressBar {
+    ProgressBar::new(steps).with_style(
+        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {msg}")
+            .expect("a valid template"),
+    )
+}
+
+/// The colour scales of K and H shared by all pictures, taken from the original surface.
+struct SharedScales {
+    /// The scale of Gaussian curvature K.
+    gaussian: ColorScale,
+    /// The scale of mean curvature H.
+    mean: ColorScale,
+}
+
+impl SharedScales {
+    /// The automatic scales of `map` for the original's K and H (sampled at [`LEVEL`]).
+    fn of(original: &Surface, map: &ColorMap) -> Self {
+        let reference = sample_patches(original, LEVEL, true);
+        let diameter = pssurf::surface::ParametricSurface::domain_bounds(original);
+        let diameter = (diameter.1 - diameter.0).norm();
+        let scale_of = |q| range_scale(Range::Auto, map, q, &reference.quantity(q), diameter);
+        SharedScales {
+            gaussian: scale_of(CurvatureQuantity::Gaussian),
+            mean: scale_of(CurvatureQuantity::Mean),
+        }
+    }
+}
+
+/// Writes a variant's shaded, Gaussian, mean and zebra pictures; returns their file names.
+fn variant_pictures(
+    v: &experiment::Variant,
+    base: &PlotOptions,
+    scales: &SharedScales,
+    dir: &Path,
+    bar: &ProgressBar,
+) -> Result<[String; 4]> {
+    bar.set_message(format!("{}: sampling", v.key));
+    let sampled = sample_patches(&v.surface, LEVEL, true);
+    bar.inc(1);
+    let mut pictures: [String; 4] = Default::default();
+    for (k, (show, scale)) in [
+        (Show::Shaded, None),
+        (
+            Show::Quantity(CurvatureQuantity::Gaussian),
+            Some(scales.gaussian),
+        ),
+        (Show::Quantity(CurvatureQuantity::Mean), Some(scales.mean)),
+        (Show::Zebra, None),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let name = format!(
+            "{}_{}.png",
+            v.key,
+            ["shaded", "gaussian", "mean", "zebra"][k]
+        );
+        bar.set_message(format!("{}: {name}", v.key));
+        let opts = PlotOptions {
+            show,
+            range: fixed(scale),
+            ..base.clone()
+        };
+        write_png(&plot_sampled(&sampled, &[], &opts), &dir.join(&name))?;
+        pictures[k] = name;
+        bar.inc(1);
+    }
+    Ok(pictures)
+}
+
+/// Writes the basis function's pictures and both domain SVGs; returns the pictures' names.
+fn write_basis_and_domains(
+    original: &Surface,
+    base: &PlotOptions,
+    dir: &Path,
+    bar: &ProgressBar,
+) -> Result<Vec<String>> {
+    bar.set_message("basis function");
+    let basis = experiment::basis_function();
+    let basis_pictures = basis_pictures(&basis, base, dir)?;
+    bar.inc(2);
+    bar.set_message("domain pictures");
+    write_domain(
+        original,
+        Some(CurvatureQuantity::Mean),
+        &dir.join("domain_original.svg"),
+    )?;
+    write_domain(&basis, None, &dir.join("domain_basis.svg"))?;
+    bar.inc(1);
+    Ok(basis_pictures)
 }
 
 fn fixed(scale: Option<ColorScale>) -> Range {
