@@ -462,3 +462,56 @@ fn load_errors_are_printed_once() {
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     }
 }
+
+/// Issue 12, defect 1, as reported: the hull dropped the true corner (1.5, 4) of a PS-point
+/// set and `fit` wrote a file that `info` refused.
+#[test]
+fn fit_writes_a_surface_that_loads_on_the_issue_12_minimal_case() {
+    let d = tmp();
+    let data = write(
+        d.path(),
+        "t.csv",
+        "x,y,z\n1,4,0\n2,3,0\n3,0,0\n3,1,0\n3,4,0\n4,0,0\n",
+    );
+    let out = d.path().join("t.json");
+    ok(&["fit", &s(&data), "-o", &s(&out)]);
+    let info = ok(&["info", &s(&out)]);
+    assert!(info.contains("vertices             6"), "{info}");
+}
+
+/// Issue 12, defect 2, as reported: a 20 × 20 grid with interior points moved by up to 1e-6
+/// gave values from −68 to 114 for z = sin(3x) cos(2y).
+#[test]
+fn fit_gradients_stay_bounded_on_a_nearly_gridded_csv() {
+    let d = tmp();
+    let mut text = String::from("x,y,z\n");
+    let mut seed = 2u64;
+    let mut jitter = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0) * 1e-6
+    };
+    for i in 0..20 {
+        for j in 0..20 {
+            let (mut x, mut y) = (i as f64 / 19.0, j as f64 / 19.0);
+            if (1..19).contains(&i) && (1..19).contains(&j) {
+                x += jitter();
+                y += jitter();
+            }
+            let z = (3.0 * x).sin() * (2.0 * y).cos();
+            text += &format!("{x:.17e},{y:.17e},{z:.17e}\n");
+        }
+    }
+    let data = write(d.path(), "nl.csv", &text);
+    let out = d.path().join("nl.json");
+    ok(&["fit", &s(&data), "-o", &s(&out)]);
+    let csv = ok(&["eval", &s(&out), "--grid", "40x40"]);
+    let mut worst: f64 = 0.0;
+    for line in csv.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|t| t.parse().unwrap()).collect();
+        let (x, y, z) = (v[0], v[1], v[v.len() - 1]);
+        worst = worst.max((z - (3.0 * x).sin() * (2.0 * y).cos()).abs());
+    }
+    assert!(worst < 3e-3, "max error {worst:e}");
+}

@@ -2,10 +2,12 @@
 
 use nalgebra::Point2;
 
-use super::orient;
+use super::orient_exact;
 
 /// The convex hull of `points`, counter-clockwise, without repeated or collinear vertices
-/// (Andrew's monotone chain). Fewer than three vertices means the points are collinear.
+/// (Andrew's monotone chain with exact orientation tests: a vertex is dropped only when it
+/// is exactly collinear or reflex, so nearly collinear true corners stay). Fewer than three
+/// vertices means the points are exactly collinear.
 pub fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
     let mut sorted = points.to_vec();
     let mut hull = Vec::with_capacity(points.len() + 1);
@@ -22,16 +24,11 @@ pub fn convex_hull_into(points: &mut [Point2<f64>], hull: &mut Vec<Point2<f64>>)
     if n == 0 {
         return;
     }
-    let scale = points
-        .iter()
-        .map(|p| (p - points[0]).norm_squared())
-        .fold(0.0, f64::max);
-    // A turn counts only when it is clearly positive relative to the set's size; repeated
-    // points make no turn and are dropped with the collinear ones.
-    let eps = 1e-14 * scale;
+    // Only a strict left turn keeps a vertex; repeated points make no turn and are dropped
+    // with the collinear ones.
     let push = |hull: &mut Vec<Point2<f64>>, start: usize, p: Point2<f64>| {
         while hull.len() >= start + 2
-            && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= eps
+            && orient_exact(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
         {
             hull.pop();
         }
@@ -59,14 +56,14 @@ pub fn convex_hull_into(points: &mut [Point2<f64>], hull: &mut Vec<Point2<f64>>)
 }
 
 /// True when `p` lies in the closed convex polygon `hull` (counter-clockwise), within a
-/// tolerance relative to the polygon's size.
+/// tolerance relative to the polygon's size (for tests of constructions that round).
 pub fn point_in_convex(hull: &[Point2<f64>], p: Point2<f64>, tol: f64) -> bool {
     let n = hull.len();
     let size = hull
         .iter()
         .map(|q| (q - hull[0]).norm_squared())
         .fold(0.0, f64::max);
-    (0..n).all(|i| orient(hull[i], hull[(i + 1) % n], p) >= -tol * size)
+    (0..n).all(|i| super::orient(hull[i], hull[(i + 1) % n], p) >= -tol * size)
 }
 
 #[cfg(test)]
@@ -88,5 +85,27 @@ mod tests {
         let h = convex_hull(&pts);
         assert_eq!(h, vec![p(0., 0.), p(1., 0.), p(1., 1.), p(0., 1.)]);
         assert_eq!(convex_hull(&[p(0., 0.), p(1., 1.), p(2., 2.)]).len(), 2);
+    }
+
+    /// Issue 12, defect 1: a tolerance relative to the set's size dropped true corners that
+    /// are nearly collinear with their neighbours (here (1, 1e-15) over the segment from
+    /// (0, 0) to (2, 0): the old hull reported the three points as collinear).
+    #[test]
+    fn a_nearly_collinear_true_corner_stays_on_the_hull() {
+        let p = |x, y| Point2::new(x, y);
+        let corner = p(1.0, 1e-15);
+        let pts = [p(0.0, 0.0), corner, p(2.0, 0.0), p(1.0, 0.0)];
+        let h = convex_hull(&pts);
+        assert_eq!(h, vec![p(0.0, 0.0), p(2.0, 0.0), corner]);
+        let far = [
+            p(1e6, 1e6),
+            p(1e6 + 1.0, 1e6 + 1.0 + 1e-9),
+            p(1e6 + 2.0, 1e6 + 2.0),
+        ];
+        assert_eq!(
+            convex_hull(&far).len(),
+            3,
+            "a corner 1e-9 off a line at 1e6"
+        );
     }
 }

@@ -153,6 +153,27 @@ impl Triangle2 {
     pub fn centroid(&self) -> Point2<f64> {
         self.point([1.0 / 3.0; 3])
     }
+
+    /// Whether `p` lies in the closed triangle, decided exactly (adaptive-precision
+    /// orientation tests, [`orient_exact`]); false for a triangle of zero area.
+    pub fn contains_exact(&self, p: Point2<f64>) -> bool {
+        let [a, b, c] = self.v;
+        let turn = orient_exact(a, b, c);
+        if turn == 0.0 || turn.is_nan() {
+            return false;
+        }
+        [(a, b), (b, c), (c, a)]
+            .iter()
+            .all(|&(u, v)| orient_exact(u, v, p) * turn.signum() >= 0.0)
+    }
+
+    /// The triangle scaled about its centroid by 1 + `margin`.
+    pub fn enlarged(&self, margin: f64) -> Triangle2 {
+        let c = self.centroid();
+        Triangle2 {
+            v: self.v.map(|p| c + (p - c) * (1.0 + margin)),
+        }
+    }
 }
 
 /// The 2-D cross product (z-component of the 3-D cross product).
@@ -162,9 +183,22 @@ pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
 }
 
 /// Twice the signed area of the triangle (a, b, c): positive when counter-clockwise.
+/// Rounded: use [`orient_exact`] for decisions.
 #[inline]
 pub fn orient(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>) -> f64 {
     cross(b - a, c - a)
+}
+
+/// The orientation of (a, b, c) with the exact sign: > 0 counter-clockwise, < 0 clockwise,
+/// 0 exactly collinear (Shewchuk's adaptive-precision predicate, `robust::orient2d`; the
+/// value approximates twice the signed area).
+#[inline]
+pub fn orient_exact(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>) -> f64 {
+    robust::orient2d(
+        robust::Coord { x: a.x, y: a.y },
+        robust::Coord { x: b.x, y: b.y },
+        robust::Coord { x: c.x, y: c.y },
+    )
 }
 
 /// The midpoint of a and b.

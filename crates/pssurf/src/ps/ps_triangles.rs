@@ -8,8 +8,16 @@ use super::refinement::PsRefinement;
 use crate::geometry::{Triangle2, convex_hull, midpoint, min_enclosing_triangle};
 use crate::triangulation::Triangulation;
 
-/// Containment tolerance for PS-points in a PS-triangle, in barycentric coordinates.
+/// How far (in barycentric coordinates) a PS-point may lie outside a *given* PS-triangle:
+/// triangles computed in closed form (UPS) or read from a file have PS-points on their edges
+/// up to rounding. Triangles built here contain their PS-points exactly, so they pass too.
 pub const CONTAINMENT_TOLERANCE: f64 = 1e-9;
+
+/// The margins (relative to its size) by which an optimal PS-triangle is enlarged about its
+/// centroid when rounding left a PS-point outside it: the smallest that makes it contain
+/// every PS-point exactly is used. Rounding errors of the construction are ~1e-15 of the
+/// size; the larger margins only matter for nearly coincident PS-points.
+pub const ENLARGEMENT_MARGINS: [f64; 7] = [0.0, 1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3];
 
 /// How the PS-triangles t_i are chosen.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -75,8 +83,7 @@ pub fn ps_triangles(
                     |pts, &i| {
                         let i = i as usize;
                         ps_points_into(tri, refinement, i, pts);
-                        min_enclosing_triangle(pts)
-                            .ok_or(PsError::DegeneratePsTriangle { vertex: i })
+                        optimal_ps_triangle(i, pts)
                     },
                 )
                 .collect();
@@ -106,31 +113,94 @@ pub fn ps_triangles(
     }
 }
 
-/// Checks that `t` is a proper PS-triangle of vertex `i` and returns it counter-clockwise.
+/// Dierckx's optimal PS-triangle of vertex `i` with PS-points `pts`, made safe to store: the
+/// minimal enclosing triangle, enlarged by the smallest of [`ENLARGEMENT_MARGINS`] that makes
+/// it contain every PS-point exactly, so a surface built here always loads again (exact containment implies the load check with [`CONTAINMENT_TOLERANCE`]).
+/// When no margin is enough (nearly coincident or nearly collinear PS-points,
+/// where the optimum is numerically meaningless) the triangle circumscribing the points'
+/// bounding circle is used.
+pub fn optimal_ps_triangle(i: usize, pts: &[Point2<f64>]) -> Result<Triangle2, PsError> {
+    if let Some(t) = min_enclosing_triangle(pts) {
+        for margin in ENLARGEMENT_MARGINS {
+            if let Ok(t) = check_ps_triangle(i, &t.enlarged(margin), pts, Containment::Exact) {
+                return Ok(t);
+            }
+        }
+    }
+    circumscribing_triangle(pts)
+        .and_then(|t| check_ps_triangle(i, &t, pts, Containment::Exact).ok())
+        .ok_or(PsError::DegeneratePsTriangle { vertex: i })
+}
+
+/// The equilateral triangle circumscribing a circle around `pts` (centre: the middle of
+/// their bounding box; radius: slightly more than the farthest point's distance), or
+/// `None` when the points coincide.
+fn circumscribing_triangle(pts: &[Point2<f64>]) -> Option<Triangle2> {
+    let lo = pts
+        .iter()
+        .fold(pts.first()?.coords, |a, p| a.inf(&p.coords));
+    let hi = pts.iter().fold(lo, |a, p| a.sup(&p.coords));
+    let centre = Point2::from((lo + hi) / 2.0);
+    let r = pts.iter().map(|p| (p - centre).norm()).fold(0.0, f64::max);
+    if !(r > 0.0 && r.is_finite()) {
+        return None;
+    }
+    // The incircle of an equilateral triangle with circumradius 2R has radius R.
+    let big = 2.0 * r * (1.0 + 1e-6);
+    let corner = |deg: f64| {
+        let a = deg.to_radians();
+        centre + nalgebra::Vector2::new(a.cos(), a.sin()) * big
+    };
+    Some(Triangle2::new(corner(90.0), corner(210.0), corner(330.0)))
+}
+
+/// How a PS-triangle must contain the PS-points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Containment {
+    /// Exactly (adaptive-precision orientation tests).
+    Exact,
+    /// Up to [`CONTAINMENT_TOLERANCE`] in barycentric coordinates.
+    Tolerant,
+}
+
+/// Checks that a given `t` is a proper PS-triangle of vertex `i` and returns it
+/// counter-clockwise: finite, not degenerate, and containing every PS-point of the vertex up
+/// to [`CONTAINMENT_TOLERANCE`].
 pub fn validate_ps_triangle(
     tri: &Triangulation,
     refinement: &PsRefinement,
     i: usize,
     t: &Triangle2,
 ) -> Result<Triangle2, PsError> {
+    check_ps_triangle(i, t, &ps_points(tri, refinement, i), Containment::Tolerant)
+}
+
+/// As [`validate_ps_triangle`] with the PS-points given and the containment rule chosen.
+fn check_ps_triangle(
+    i: usize,
+    t: &Triangle2,
+    pts: &[Point2<f64>],
+    rule: Containment,
+) -> Result<Triangle2, PsError> {
     if t.v.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) || t.is_degenerate() {
         return Err(PsError::DegeneratePsTriangle { vertex: i });
     }
-    let t = if t.det() < 0.0 {
+    let t = if crate::geometry::orient_exact(t.v[0], t.v[1], t.v[2]) < 0.0 {
         Triangle2::new(t.v[0], t.v[2], t.v[1])
     } else {
         *t
     };
-    for p in ps_points(tri, refinement, i) {
-        let b = t.bary(p);
-        if b.iter().any(|&x| x < -CONTAINMENT_TOLERANCE) {
-            return Err(PsError::PsPointOutside {
-                vertex: i,
-                point: [p.x, p.y],
-            });
-        }
+    let inside = |p: Point2<f64>| match rule {
+        Containment::Exact => t.contains_exact(p),
+        Containment::Tolerant => t.bary(p).iter().all(|&x| x >= -CONTAINMENT_TOLERANCE),
+    };
+    match pts.iter().find(|&&p| !inside(p)) {
+        Some(p) => Err(PsError::PsPointOutside {
+            vertex: i,
+            point: [p.x, p.y],
+        }),
+        None => Ok(t),
     }
-    Ok(t)
 }
 
 /// How good a PS-triangle is: its area relative to the convex hull of the PS-points (≥ 1; the

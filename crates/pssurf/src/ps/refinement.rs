@@ -5,7 +5,7 @@ use nalgebra::Point2;
 use rayon::prelude::*;
 
 use super::PsError;
-use crate::geometry::{Triangle2, orient};
+use crate::geometry::{Triangle2, orient_exact};
 use crate::triangulation::Triangulation;
 
 /// How to choose the interior split point Z_j of each triangle.
@@ -163,12 +163,14 @@ fn edge_parameter(
     let (a, b) = (v[c], v[(c + 1) % 3]);
     let (first, second, from, to) = if t < s { (t, s, a, b) } else { (s, t, b, a) };
     let (pa, pb) = (tri.vertex(from), tri.vertex(to));
+    // Adaptive-precision orientations: their signs are exact, and their values accurate
+    // where rounded ones would be noise (split points of slivers lie almost on the edge).
     let (oa, ob) = (
-        orient(z[first], z[second], pa),
-        orient(z[first], z[second], pb),
+        orient_exact(z[first], z[second], pa),
+        orient_exact(z[first], z[second], pb),
     );
     let mu = oa / (oa - ob);
-    if !(mu > STRICT && mu < 1.0 - STRICT) {
+    if !(oa * ob < 0.0 && mu > STRICT && mu < 1.0 - STRICT) {
         return Err(PsError::EdgePointOutside {
             triangle: t.min(s),
             neighbor: t.max(s),

@@ -46,15 +46,7 @@ pub struct SegmentPart {
     pub end: f64,
 }
 
-/// Exact orientation: > 0 when a, b, c turn counter-clockwise, < 0 clockwise, 0 collinear.
-#[inline]
-fn orient(a: Point2<f64>, b: Point2<f64>, c: Point2<f64>) -> f64 {
-    robust::orient2d(
-        robust::Coord { x: a.x, y: a.y },
-        robust::Coord { x: b.x, y: b.y },
-        robust::Coord { x: c.x, y: c.y },
-    )
-}
+use crate::geometry::orient_exact as orient;
 
 impl Domain {
     /// The domain bounded by `loops` (each a closed polyline without its first point
