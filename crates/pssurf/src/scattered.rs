@@ -1,7 +1,7 @@
 //! Scattered data on triangulations: estimating the gradients that Hermite interpolation
 //! (2.30) needs when only values are known.
 
-use nalgebra::Vector2;
+use nalgebra::{Point2, Vector2};
 use rayon::prelude::*;
 use thiserror::Error;
 
@@ -238,11 +238,97 @@ fn condition(rmat: &[[f64; 6]; 5], n: usize) -> f64 {
     if lo > 0.0 { hi / lo } else { f64::INFINITY }
 }
 
+/// Two data points closer than a given fraction of the data's diameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NearDuplicate {
+    /// The index of the first point.
+    pub first: usize,
+    /// The index of the second point (> `first`).
+    pub second: usize,
+    /// Their distance.
+    pub distance: f64,
+}
+
+/// Up to `limit` pairs of distinct points closer than `relative` × the diameter of the
+/// points' bounding box (a sweep along x after sorting: O(n log n)). Interpolating values at
+/// nearly coincident points makes steep, meaningless slopes; callers warn about them.
+pub fn near_duplicates(points: &[Point2<f64>], relative: f64, limit: usize) -> Vec<NearDuplicate> {
+    let Some(first) = points.first() else {
+        return Vec::new();
+    };
+    let lo = points.iter().fold(first.coords, |a, p| a.inf(&p.coords));
+    let hi = points.iter().fold(first.coords, |a, p| a.sup(&p.coords));
+    let tol = relative * (hi - lo).norm();
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_unstable_by(|&a, &b| points[a].x.total_cmp(&points[b].x));
+    let mut found = Vec::new();
+    for (k, &a) in order.iter().enumerate() {
+        for &b in &order[k + 1..] {
+            if points[b].x - points[a].x > tol {
+                break;
+            }
+            let distance = (points[b] - points[a]).norm();
+            if distance <= tol && distance > 0.0 {
+                found.push(NearDuplicate {
+                    first: a.min(b),
+                    second: a.max(b),
+                    distance,
+                });
+                if found.len() == limit {
+                    return found;
+                }
+            }
+        }
+    }
+    found
+}
+
+/// Up to `limit` triangles whose vertices are nearly collinear: twice their area below
+/// `relative` × their longest edge squared. Slivers make the split of the PS refinement and
+/// the local gradient fits fragile; callers warn about them.
+pub fn slivers(tri: &Triangulation, relative: f64, limit: usize) -> Vec<usize> {
+    (0..tri.triangle_count())
+        .filter(|&t| {
+            let g = tri.triangle_geometry(t);
+            let h = g.diameter();
+            g.det().abs() < relative * h * h
+        })
+        .take(limit)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::test_util::meshes::catalogue;
     use crate::test_util::*;
+
+    #[test]
+    fn near_duplicates_and_slivers_are_found_by_hand_computed_cases() {
+        let p = Point2::new;
+        let pts = [
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0 + 1e-13, 1e-13),
+            p(0.0, 1.0),
+            p(0.5, 0.5),
+        ];
+        let d = near_duplicates(&pts, 1e-10, 10);
+        assert_eq!(d.len(), 1);
+        assert_eq!((d[0].first, d[0].second), (1, 2));
+        assert_eq!(d[0].distance, (pts[2] - pts[1]).norm());
+        assert!((d[0].distance - 2f64.sqrt() * 1e-13).abs() < 1e-16);
+        assert!(near_duplicates(&pts, 1e-14, 10).is_empty());
+        // A triangle with apex 1e-9 above its base of length 2: twice the area 2e-9, longest
+        // edge² 4, relative 5e-10.
+        let t = Triangulation::try_new(
+            vec![p(0.0, 0.0), p(2.0, 0.0), p(1.0, 1e-9), p(1.0, -1.0)],
+            vec![[0, 1, 2], [0, 3, 1]],
+        )
+        .unwrap();
+        assert_eq!(slivers(&t, 1e-9, 10), vec![0]);
+        assert!(slivers(&t, 4e-10, 10).is_empty());
+    }
 
     #[test]
     fn quadratic_data_gives_exact_gradients() {

@@ -65,6 +65,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
     };
     let mut points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
     let mut rows: Vec<&Vec<f64>> = table.rows.iter().collect();
+    let mut row_of: Vec<usize> = (0..points.len()).collect();
     if args.triangles.is_none() {
         // Without given triangles the vertex order is ours to choose: a space-filling curve
         // keeps neighbouring vertices close in memory, which makes every later step faster.
@@ -80,8 +81,10 @@ pub fn run(args: &FitArgs) -> Result<()> {
         let order = pssurf::triangulation::morton_order(&points);
         points = order.iter().map(|&i| points[i as usize]).collect();
         rows = order.iter().map(|&i| &table.rows[i as usize]).collect();
+        row_of = order.iter().map(|&i| i as usize).collect();
     }
     let values: Vec<f64> = rows.iter().map(|r| r[z]).collect();
+    warn_near_duplicates(&points, &row_of);
     let tri = match &args.triangles {
         Some(path) => {
             let t = read_triangles(path, points.len())?;
@@ -98,6 +101,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
             e => anyhow::anyhow!("{}: cannot triangulate: {e}", args.data.display()),
         })?,
     };
+    warn_slivers(&tri, &row_of);
     let (gradients, method) = match grads {
         Some((a, b)) => {
             let g: Vec<(f64, f64)> = rows.iter().map(|r| (r[a], r[b])).collect();
@@ -148,4 +152,44 @@ pub fn run(args: &FitArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// Relative distance below which two data points count as nearly duplicate.
+const NEAR_DUPLICATE: f64 = 1e-9;
+/// Relative area below which a triangle counts as a sliver (nearly collinear vertices).
+const SLIVER: f64 = 1e-9;
+/// How many cases of each kind are named.
+const NAMED: usize = 5;
+
+/// Warns (without failing) about nearly duplicate points, naming their data rows (1-based,
+/// as in the CSV without its header); `row_of[k]` is point k's data row.
+fn warn_near_duplicates(points: &[Point2<f64>], row_of: &[usize]) {
+    let row = |v: usize| row_of[v] + 1;
+    let pairs = pssurf::scattered::near_duplicates(points, NEAR_DUPLICATE, NAMED + 1);
+    for d in pairs.iter().take(NAMED) {
+        eprintln!(
+            "warning: rows {} and {} are only {:.2e} apart (under {NEAR_DUPLICATE:e} of the data's extent): the surface will be steep between them; merge or remove one",
+            row(d.first).min(row(d.second)),
+            row(d.first).max(row(d.second)),
+            d.distance
+        );
+    }
+    if pairs.len() > NAMED {
+        eprintln!("warning: more nearly duplicate rows than these {NAMED}");
+    }
+}
+
+/// Warns (without failing) about sliver triangles, naming their vertices' data rows.
+fn warn_slivers(tri: &Triangulation, row_of: &[usize]) {
+    let row = |v: usize| row_of[v] + 1;
+    let thin = pssurf::scattered::slivers(tri, SLIVER, NAMED + 1);
+    for &t in thin.iter().take(NAMED) {
+        let [a, b, c] = tri.triangle(t).map(row);
+        eprintln!(
+            "warning: rows {a}, {b} and {c} are nearly collinear (a sliver triangle): the fit may be poor or fail there"
+        );
+    }
+    if thin.len() > NAMED {
+        eprintln!("warning: more sliver triangles than these {NAMED}");
+    }
 }
