@@ -84,8 +84,28 @@ impl ViewState {
         if !numbers.iter().all(|x| x.is_finite()) {
             return Err("the camera and light settings must be finite numbers".into());
         }
-        if !(c.distance > 0.0 && c.half_height > 0.0 && (0.0..170.0).contains(&c.fov_deg)) {
-            return Err("the camera needs a positive distance and size".into());
+        let sizes = [c.distance, c.half_height, c.target.norm()];
+        if !(c.distance > 0.0 && c.half_height > 0.0 && (0.0..170.0).contains(&c.fov_deg))
+            || sizes.iter().any(|&x| x > 1e12)
+        {
+            return Err("the camera needs a positive distance and size, at most 1e12".into());
+        }
+        let zebra = self.display.zebra_width_deg;
+        if !(1.0..=20.0).contains(&zebra) {
+            return Err(format!("zebra band width {zebra}° is outside 1–20°"));
+        }
+        match self.display.range {
+            pssurf_viz::plot::Range::Fixed(lo, hi)
+                if !(lo.is_finite() && hi.is_finite() && lo < hi) =>
+            {
+                return Err(format!(
+                    "the colour range [{lo}, {hi}] must be finite and non-empty"
+                ));
+            }
+            pssurf_viz::plot::Range::Contrast(k) if !(k > 0.0 && k.is_finite()) => {
+                return Err(format!("the contrast C = {k} must be positive and finite"));
+            }
+            _ => {}
         }
         if self.display.level > 5 {
             return Err(format!(

@@ -90,6 +90,7 @@ fn view_settings_round_trip_with_the_panels_settings() {
     app.view.display.level = 4;
     app.view.camera.azimuth_deg = 12.5;
     app.view.light.headlight = false;
+    app.view.display.range = pssurf_viz::plot::Range::Fixed(-2.0, 0.5);
     app.view.probe.alignment = Alignment::Parametric;
     let noise = app.view_state().panels["Noise"].clone();
     let mut changed = noise.clone();
@@ -116,6 +117,20 @@ fn damaged_view_settings_are_refused_with_a_message() {
         ("negative", r#"{"camera": {"half_height": -1}}"#.to_string()),
         ("level", r#"{"display": {"level": 40}}"#.to_string()),
         ("mode", r#"{"display": {"mode": "glossy"}}"#.to_string()),
+        ("far", r#"{"camera": {"distance": 1e20}}"#.to_string()),
+        ("overflow", r#"{"camera": {"distance": 1e308}}"#.to_string()),
+        (
+            "zebra",
+            r#"{"display": {"zebra_width_deg": 0}}"#.to_string(),
+        ),
+        (
+            "range",
+            r#"{"display": {"range": {"fixed": [1, -1]}}}"#.to_string(),
+        ),
+        (
+            "contrast",
+            r#"{"display": {"range": {"contrast": -2}}}"#.to_string(),
+        ),
         (
             "big",
             format!("{{\"panels\": {{\"x\": \"{}\"}}}}", "a".repeat(2 << 20)),
@@ -126,6 +141,14 @@ fn damaged_view_settings_are_refused_with_a_message() {
         std::fs::write(&path, text).unwrap();
         let e = ViewState::load(&path).unwrap_err();
         assert!(e.contains(&format!("{name}.json")), "{name}: {e}");
+        let why = match name {
+            "range" => "colour range",
+            "contrast" => "contrast",
+            "zebra" => "zebra",
+            "far" => "1e12",
+            _ => "",
+        };
+        assert!(e.contains(why), "{name}: {e}");
     }
     // Unknown fields and missing ones are fine: settings of another build still load.
     let path = dir.path().join("partial.json");

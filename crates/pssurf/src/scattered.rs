@@ -228,14 +228,49 @@ fn gram_schmidt(work: &mut [f64], m: usize, n: usize) -> Option<[[f64; 6]; 5]> {
     Some(rmat)
 }
 
-/// The 2-norm condition number σ_max/σ_min of the leading n × n block of R.
+/// The 2-norm condition number σ_max/σ_min of the leading n × n block of R (n ≤ 5), or the
+/// upper bound ‖R‖_F ‖R⁻¹‖_F when that already shows it at most [`MAX_CONDITION`] (the
+/// common case, without an SVD; the bound exceeds the exact value by at most a factor n).
 fn condition(rmat: &[[f64; 6]; 5], n: usize) -> f64 {
-    let r = nalgebra::DMatrix::from_fn(n, n, |a, b| if b >= a { rmat[a][b] } else { 0.0 });
-    let sv = r.singular_values();
-    let (lo, hi) = sv.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
-        (lo.min(x), hi.max(x))
-    });
-    if lo > 0.0 { hi / lo } else { f64::INFINITY }
+    let upper = |a: usize, b: usize| {
+        if b >= a && a < n && b < n {
+            rmat[a][b]
+        } else {
+            0.0
+        }
+    };
+    let r = nalgebra::Matrix5::from_fn(upper);
+    let bound = frobenius_of_inverse(&r, n).map(|inv| r.norm() * inv);
+    if bound.is_some_and(|b| b <= MAX_CONDITION) {
+        return bound.unwrap_or(f64::INFINITY);
+    }
+    // The zero rows and columns beyond n add zero singular values: skip them.
+    let mut sv: Vec<f64> = r.singular_values().iter().copied().collect();
+    sv.sort_by(|a, b| b.total_cmp(a));
+    let lo = sv[n - 1];
+    if lo > 0.0 { sv[0] / lo } else { f64::INFINITY }
+}
+
+/// ‖R⁻¹‖_F of the upper-triangular leading n × n block of `r`, by back substitution
+/// (`None` when a diagonal entry is zero).
+fn frobenius_of_inverse(r: &nalgebra::Matrix5<f64>, n: usize) -> Option<f64> {
+    let mut sum = 0.0;
+    for col in 0..n {
+        // Column `col` of R⁻¹: solve R x = e_col (x is zero below row col).
+        let mut x = [0.0f64; 5];
+        for row in (0..=col).rev() {
+            let mut s = if row == col { 1.0 } else { 0.0 };
+            for k in row + 1..=col {
+                s -= r[(row, k)] * x[k];
+            }
+            if r[(row, row)] == 0.0 {
+                return None;
+            }
+            x[row] = s / r[(row, row)];
+            sum += x[row] * x[row];
+        }
+    }
+    Some(sum.sqrt())
 }
 
 /// Two data points closer than a given fraction of the data's diameter.
@@ -250,28 +285,37 @@ pub struct NearDuplicate {
 }
 
 /// Up to `limit` pairs of distinct points closer than `relative` × the diameter of the
-/// points' bounding box (a sweep along x after sorting: O(n log n)). Interpolating values at
-/// nearly coincident points makes steep, meaningless slopes; callers warn about them.
+/// points' bounding box, found with an R-tree (O(n log n), also when many points share a
+/// coordinate). Interpolating values at nearly coincident points makes steep, meaningless
+/// slopes; callers warn about them.
 pub fn near_duplicates(points: &[Point2<f64>], relative: f64, limit: usize) -> Vec<NearDuplicate> {
+    use rstar::RTree;
+    use rstar::primitives::GeomWithData;
     let Some(first) = points.first() else {
         return Vec::new();
     };
     let lo = points.iter().fold(first.coords, |a, p| a.inf(&p.coords));
     let hi = points.iter().fold(first.coords, |a, p| a.sup(&p.coords));
     let tol = relative * (hi - lo).norm();
-    let mut order: Vec<usize> = (0..points.len()).collect();
-    order.sort_unstable_by(|&a, &b| points[a].x.total_cmp(&points[b].x));
+    if !(tol > 0.0 && tol.is_finite()) || limit == 0 {
+        return Vec::new();
+    }
+    let tree = RTree::bulk_load(
+        points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| GeomWithData::new([p.x, p.y], k))
+            .collect(),
+    );
     let mut found = Vec::new();
-    for (k, &a) in order.iter().enumerate() {
-        for &b in &order[k + 1..] {
-            if points[b].x - points[a].x > tol {
-                break;
-            }
-            let distance = (points[b] - points[a]).norm();
-            if distance <= tol && distance > 0.0 {
+    for (a, p) in points.iter().enumerate() {
+        for near in tree.locate_within_distance([p.x, p.y], tol * tol) {
+            let b = near.data;
+            let distance = (points[b] - p).norm();
+            if b > a && distance > 0.0 {
                 found.push(NearDuplicate {
-                    first: a.min(b),
-                    second: a.max(b),
+                    first: a,
+                    second: b,
                     distance,
                 });
                 if found.len() == limit {
@@ -319,6 +363,14 @@ mod tests {
         assert_eq!(d[0].distance, (pts[2] - pts[1]).norm());
         assert!((d[0].distance - 2f64.sqrt() * 1e-13).abs() < 1e-16);
         assert!(near_duplicates(&pts, 1e-14, 10).is_empty());
+        // 200k points on one vertical line, 1 apart: none is near another, and the search
+        // does not compare every pair (which would not finish).
+        let line: Vec<Point2<f64>> = (0..200_000).map(|k| p(0.0, k as f64)).collect();
+        assert!(near_duplicates(&line, 1e-9, 10).is_empty());
+        let mut close = line.clone();
+        close[7] = p(0.0, 6.0 + 1e-6);
+        let d = near_duplicates(&close, 1e-9, 10);
+        assert_eq!((d.len(), d[0].first, d[0].second), (1, 6, 7));
         // A triangle with apex 1e-9 above its base of length 2: twice the area 2e-9, longest
         // edge² 4, relative 5e-10.
         let t = Triangulation::try_new(
@@ -328,6 +380,96 @@ mod tests {
         .unwrap();
         assert_eq!(slivers(&t, 1e-9, 10), vec![0]);
         assert!(slivers(&t, 4e-10, 10).is_empty());
+    }
+
+    #[test]
+    fn the_condition_number_is_the_svd_ratio_or_a_bound_below_the_limit() {
+        let mut r = rng(71);
+        let mut exact_checked = 0;
+        for case in 0..2000 {
+            let n = if case % 3 == 0 { 2 } else { 5 };
+            let mut rmat = [[0.0f64; 6]; 5];
+            // Diagonals spread over a random number of decades: conditions from ~1 to ~1e6.
+            let spread = uniform(&mut r, 0.0, 6.0);
+            for a in 0..n {
+                rmat[a][a] = 10f64.powf(-spread * uniform(&mut r, 0.0, 1.0));
+                for b in a + 1..n {
+                    rmat[a][b] = uniform(&mut r, -1.0, 1.0) * 0.3;
+                }
+            }
+            let full =
+                nalgebra::DMatrix::from_fn(n, n, |a, b| if b >= a { rmat[a][b] } else { 0.0 });
+            let sv = full.singular_values();
+            let exact = sv.max() / sv.min();
+            let c = condition(&rmat, n);
+            if c <= MAX_CONDITION {
+                assert!(c >= exact * (1.0 - 1e-12) && c <= n as f64 * exact * (1.0 + 1e-12));
+                assert!(exact <= MAX_CONDITION);
+            } else {
+                // Numerically singular blocks (σ_min rounds to 0) are infinite both ways.
+                assert!(
+                    c == exact || (c - exact).abs() <= 1e-9 * exact,
+                    "{c} vs {exact}"
+                );
+                exact_checked += 1;
+            }
+        }
+        assert!(
+            exact_checked > 300,
+            "only {exact_checked} ill-conditioned cases"
+        );
+    }
+
+    #[test]
+    fn quadratics_are_exact_on_jittered_grids_at_every_jitter() {
+        let mut r = rng(72);
+        for delta in [0.0, 1e-12, 1e-9, 1e-6, 1e-3] {
+            let mut pts = Vec::new();
+            for i in 0..12 {
+                for j in 0..12 {
+                    let inner = (1..11).contains(&i) && (1..11).contains(&j);
+                    let jitter = |r: &mut _| {
+                        if inner && delta > 0.0 {
+                            uniform(r, -delta, delta)
+                        } else {
+                            0.0
+                        }
+                    };
+                    pts.push(Point2::new(
+                        i as f64 / 11.0 + jitter(&mut r),
+                        j as f64 / 11.0 + jitter(&mut r),
+                    ));
+                }
+            }
+            let t = Triangulation::delaunay(pts).unwrap();
+            let c: [f64; 6] = std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0));
+            let values: Vec<f64> = t
+                .vertices()
+                .iter()
+                .map(|p| {
+                    c[0] + c[1] * p.x
+                        + c[2] * p.y
+                        + c[3] * p.x * p.x
+                        + c[4] * p.x * p.y
+                        + c[5] * p.y * p.y
+                })
+                .collect();
+            for (i, (g, kind)) in estimate_gradients(&t, &values).unwrap().iter().enumerate() {
+                let p = t.vertex(i);
+                let exact = Vector2::new(
+                    c[1] + 2.0 * c[3] * p.x + c[4] * p.y,
+                    c[2] + c[4] * p.x + 2.0 * c[5] * p.y,
+                );
+                assert!(
+                    matches!(kind, GradientFit::Quadratic { .. }),
+                    "δ={delta}: {kind:?}"
+                );
+                assert!(
+                    (g - exact).norm() < 1e-10 * (1.0 + exact.norm()),
+                    "δ={delta}: {g} vs {exact}"
+                );
+            }
+        }
     }
 
     #[test]

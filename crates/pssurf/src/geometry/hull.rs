@@ -108,4 +108,51 @@ mod tests {
             "a corner 1e-9 off a line at 1e6"
         );
     }
+
+    /// Random sets, many of them nearly collinear (points on a line moved by a few ulps):
+    /// every point lies in the hull, every hull vertex is a strict left turn and an input
+    /// point — all decided exactly.
+    #[test]
+    fn random_and_nearly_collinear_hulls_are_exact() {
+        use crate::test_util::{rng, uniform};
+        let mut r = rng(40);
+        let mut nearly_collinear = 0;
+        for case in 0..3000 {
+            let n = 3 + case % 20;
+            let pts: Vec<Point2<f64>> = if case % 2 == 0 {
+                (0..n)
+                    .map(|_| Point2::new(uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0)))
+                    .collect()
+            } else {
+                nearly_collinear += 1;
+                let (a, d) = (uniform(&mut r, -1e3, 1e3), uniform(&mut r, -3.0, 3.0));
+                (0..n)
+                    .map(|_| {
+                        let t = uniform(&mut r, -1.0, 1.0);
+                        let y = a + d * t;
+                        let ulps = uniform(&mut r, -4.0, 4.0).round();
+                        Point2::new(t, y + ulps * f64::EPSILON * y.abs().max(1.0))
+                    })
+                    .collect()
+            };
+            let h = convex_hull(&pts);
+            let m = h.len();
+            if m < 3 {
+                // Exactly collinear: every triple is.
+                assert!(
+                    pts.windows(3)
+                        .all(|w| orient_exact(w[0], w[1], w[2]) == 0.0)
+                );
+                continue;
+            }
+            for k in 0..m {
+                assert!(orient_exact(h[k], h[(k + 1) % m], h[(k + 2) % m]) > 0.0);
+                assert!(pts.contains(&h[k]));
+            }
+            for &q in &pts {
+                assert!((0..m).all(|k| orient_exact(h[k], h[(k + 1) % m], q) >= 0.0));
+            }
+        }
+        assert_eq!(nearly_collinear, 1500);
+    }
 }
