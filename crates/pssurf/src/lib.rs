@@ -27,6 +27,7 @@ pub mod noise;
 pub mod ps;
 pub mod quadrature;
 pub mod scattered;
+pub mod sparse;
 pub mod surface;
 pub mod triangulation;
 pub mod ups;

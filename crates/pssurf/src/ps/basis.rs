@@ -354,28 +354,10 @@ impl PsBasis {
         for t in 0..self.tri.triangle_count() {
             let weights = self.ordinate_integral_weights(t);
             let v = self.tri.triangle(t);
-            // Push the ordinate weights back through the stencil (its transpose).
-            let st = self.stencil(t);
-            let mut wv = weights;
-            // ω, θ and r depend on w, u, v: distribute their weights first.
+            let k = self.stencil(t).transpose(weights);
             for c in 0..3 {
-                wv[net::w(c)] += wv[net::OM] * st.z[c];
-            }
-            for c in 0..3 {
-                let d = (c + 1) % 3;
-                let l = st.lambda[c];
-                wv[net::u(c)] += wv[net::r(c)] * l;
-                wv[net::v(d)] += wv[net::r(c)] * (1.0 - l);
-                wv[net::w(c)] += wv[net::th(c)] * l;
-                wv[net::w(d)] += wv[net::th(c)] * (1.0 - l);
-            }
-            for c in 0..3 {
-                let rows = st.rows[c];
-                let idx = [net::s(c), net::u(c), net::v(c), net::w(c)];
-                for (row, &k) in rows.iter().zip(&idx) {
-                    for j in 0..3 {
-                        out[v[c]][j] += wv[k] * row[j];
-                    }
+                for j in 0..3 {
+                    out[v[c]][j] += k[c][j];
                 }
             }
         }

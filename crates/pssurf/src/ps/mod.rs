@@ -3,6 +3,7 @@
 //! Bézier nets, evaluation, derivatives, integration, and the rational NURPS form.
 
 pub mod basis;
+pub mod energy;
 pub mod net;
 pub mod nurps;
 pub mod ps_triangles;
@@ -10,6 +11,7 @@ pub mod refinement;
 pub mod spline;
 
 pub use basis::{PsBasis, SubLocation};
+pub use energy::{Energy, PieceHessian};
 pub use nurps::Nurps;
 pub use ps_triangles::{PsTriangleChoice, PsTriangleQuality};
 pub use refinement::{PsRefinement, SplitRule};

@@ -160,4 +160,33 @@ impl NetStencil {
         n[OM] = T::combine3(self.z, [n[w(0)], n[w(1)], n[w(2)]]);
         n
     }
+
+    /// The transpose of [`apply`](Self::apply): the coefficients `k[c][j]` of the control
+    /// values such that Σ_m `weights[m]` × ordinate_m = Σ_{c,j} `k[c][j]` × ctrl[c][j]
+    /// (for linear functionals of the net: integrals, point values, derivatives).
+    pub fn transpose(&self, weights: [f64; NET_LEN]) -> [[f64; 3]; 3] {
+        let mut wv = weights;
+        // ω, θ and r depend on w, u, v: distribute their weights first.
+        for c in 0..3 {
+            wv[w(c)] += wv[OM] * self.z[c];
+        }
+        for c in 0..3 {
+            let d = (c + 1) % 3;
+            let l = self.lambda[c];
+            wv[u(c)] += wv[r(c)] * l;
+            wv[v(d)] += wv[r(c)] * (1.0 - l);
+            wv[w(c)] += wv[th(c)] * l;
+            wv[w(d)] += wv[th(c)] * (1.0 - l);
+        }
+        let mut out = [[0.0; 3]; 3];
+        for c in 0..3 {
+            let idx = [s(c), u(c), v(c), w(c)];
+            for (row, &k) in self.rows[c].iter().zip(&idx) {
+                for j in 0..3 {
+                    out[c][j] += wv[k] * row[j];
+                }
+            }
+        }
+        out
+    }
 }

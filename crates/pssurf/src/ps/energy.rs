@@ -1,0 +1,400 @@
+//! Energies of PS-splines as quadratic forms in their control values, assembled exactly.
+//!
+//! A PS-spline is quadratic on each of the six pieces of every triangle (thesis section
+//! 2.4), so its Hessian is constant on each piece and linear in the nine control values of
+//! the triangle's vertices (through the Bézier net, (2.54)–(2.60)). Two energies follow:
+//!
+//! - [`Energy::ThinPlate`]: ∫_Ω s_xx² + 2 s_xy² + s_yy², the thin-plate energy (thesis
+//!   5.4.3 uses its parametric form for fairing). Zero exactly on linear functions.
+//! - [`Energy::HessianJumps`]: Σ over the interior edges e of Δ* of
+//!   w_e ‖∇²s|_left − ∇²s|_right‖²_F with w_e = |e|² / (A_left + A_right), the
+//!   piecewise-quadratic counterpart of ∫ ‖∇³s‖² (a jump J over a distance d ≈
+//!   (A_left + A_right)/|e| is a third derivative J/d over an area A_left + A_right). Zero
+//!   exactly on quadratics, so minimising it reproduces them.
+//!
+//! Both are sums of squares of linear functions of the control values: the matrices are
+//! symmetric positive semi-definite, and exact up to rounding (no quadrature).
+
+use rayon::prelude::*;
+
+use super::PsBasis;
+use super::net::{NET_LEN, SUB_ORDINATES};
+use crate::sparse::{Block3Matrix, ElementMatrix};
+
+/// Which energy of a PS-spline to assemble (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Energy {
+    /// ∫ s_xx² + 2 s_xy² + s_yy²: bending; its minimisers reproduce linear functions.
+    ThinPlate,
+    /// Σ_e w_e ‖[∇²s]_e‖²: the jumps of the Hessian across the edges of Δ*; its minimisers
+    /// reproduce quadratics.
+    HessianJumps,
+}
+
+/// The Frobenius weights of the Hessian's entries (xx, xy, yy): ‖H‖²_F = H_xx² + 2 H_xy² +
+/// H_yy².
+const FROBENIUS: [f64; 3] = [1.0, 2.0, 1.0];
+
+/// The constant Hessian of one piece of a triangle, as linear functions of the triangle's
+/// nine control values (index 3c + j for corner c's control value j).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PieceHessian {
+    /// The piece's area.
+    pub area: f64,
+    /// Coefficients of s_xx, s_xy and s_yy.
+    pub rows: [[f64; 9]; 3],
+}
+
+impl PsBasis {
+    /// The Hessians of the six pieces of triangle `t`, in the order of
+    /// [`PsRefinement::sub_triangles`](super::PsRefinement::sub_triangles). On a piece with
+    /// barycentric coordinates τ and ordinates b_ij (b_ij = b_ji for the multi-index
+    /// e_i + e_j), s = Σ_ij b_ij τ_i τ_j, so ∇²s = 2 Σ_ij b_ij ∇τ_i ∇τ_jᵀ.
+    pub fn piece_hessians(&self, t: usize) -> [PieceHessian; 6] {
+        let stencil = self.stencil(t);
+        let pieces = self.refinement().sub_triangles(self.triangulation(), t);
+        std::array::from_fn(|k| {
+            let piece = &pieces[k];
+            let g = piece
+                .bary_map()
+                .expect("pieces of a valid PS refinement are not degenerate")
+                .g;
+            // Ordinate positions b200, b110, b101, b020, b011, b002 → index pairs.
+            const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
+            let mut rows = [[0.0; 9]; 3];
+            for (entry, (a, b)) in [(0, 0), (0, 1), (1, 1)].into_iter().enumerate() {
+                let mut weights = [0.0; NET_LEN];
+                for (slot, &(i, j)) in PAIRS.iter().enumerate() {
+                    let sym = g[i][a] * g[j][b] + g[j][a] * g[i][b];
+                    weights[SUB_ORDINATES[k][slot]] = if i == j { sym } else { 2.0 * sym };
+                }
+                let coeffs = stencil.transpose(weights);
+                for c in 0..3 {
+                    for j in 0..3 {
+                        rows[entry][3 * c + j] = coeffs[c][j];
+                    }
+                }
+            }
+            PieceHessian {
+                area: piece.area(),
+                rows,
+            }
+        })
+    }
+
+    /// The matrix Q of `energy` over the control values: E(s) = cᵀ Q c, with c the
+    /// control values in vertex order (three per vertex).
+    pub fn energy_matrix(&self, energy: Energy) -> Block3Matrix {
+        let tri = self.triangulation();
+        let mut q = Block3Matrix::with_pattern(tri.vertex_count(), |i, out| {
+            for &t in tri.molecule(i) {
+                out.extend(tri.triangle(t as usize).map(|v| v as u32));
+                if energy == Energy::HessianJumps {
+                    for e in 0..3 {
+                        if let Some(n) = tri.neighbor(t as usize, e) {
+                            out.extend(tri.triangle(n).map(|v| v as u32));
+                        }
+                    }
+                }
+            }
+        });
+        const CHUNK: usize = 4096;
+        for first in (0..tri.triangle_count()).step_by(CHUNK) {
+            let last = (first + CHUNK).min(tri.triangle_count());
+            let elements: Vec<Vec<Element>> = (first..last)
+                .into_par_iter()
+                .map(|t| match energy {
+                    Energy::ThinPlate => vec![self.thin_plate_element(t)],
+                    Energy::HessianJumps => self.jump_elements(t),
+                })
+                .collect();
+            for e in elements.iter().flatten() {
+                q.add_element(&e.vertices[..e.len], &e.matrix);
+            }
+        }
+        q
+    }
+
+    /// ∫ over triangle t of ‖∇²s‖²_F: Σ over its pieces of area × ‖H‖²_F.
+    fn thin_plate_element(&self, t: usize) -> Element {
+        let mut e = Element::new(&self.triangulation().triangle(t));
+        for piece in self.piece_hessians(t) {
+            for (r, row) in piece.rows.iter().enumerate() {
+                e.add_square(piece.area * FROBENIUS[r], &row[..]);
+            }
+        }
+        e
+    }
+
+    /// The Hessian jumps of triangle t: across its six inner edges (one element), and across
+    /// each edge of Δ it shares with a triangle of larger index (one element each, over
+    /// the four vertices of the two triangles).
+    fn jump_elements(&self, t: usize) -> Vec<Element> {
+        let tri = self.triangulation();
+        let v = tri.triangle(t);
+        let h = self.piece_hessians(t);
+        let pieces = self.refinement().sub_triangles(tri, t);
+        let mut inner = Element::new(&v);
+        for k in 0..6 {
+            // Piece k and piece k + 1 share the edge from Z to their common corner
+            // (R_c for k = 2c, V_{c+1} for k = 2c + 1).
+            let next = (k + 1) % 6;
+            let edge = pieces[k].v[1] - pieces[k].v[2];
+            let w = jump_weight(edge.norm_squared(), h[k].area + h[next].area);
+            for r in 0..3 {
+                let jump: [f64; 9] = std::array::from_fn(|m| h[k].rows[r][m] - h[next].rows[r][m]);
+                inner.add_square(w * FROBENIUS[r], &jump);
+            }
+        }
+        let mut out = vec![inner];
+        for c in 0..3 {
+            let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
+                continue;
+            };
+            if n < t {
+                continue;
+            }
+            out.push(self.cross_edge_element(t, c, n, &h, &pieces));
+        }
+        out
+    }
+
+    /// The jumps across PS edge c of triangle t (V_c → V_{c+1}) into its neighbour n: the
+    /// segments V_c R_c (piece 2c of t) and R_c V_{c+1} (piece 2c + 1).
+    fn cross_edge_element(
+        &self,
+        t: usize,
+        c: usize,
+        n: usize,
+        h: &[PieceHessian; 6],
+        pieces: &[crate::geometry::Triangle2; 6],
+    ) -> Element {
+        let tri = self.triangulation();
+        let v = tri.triangle(t);
+        let vn = tri.triangle(n);
+        // In n the shared edge runs V_{c+1} → V_c: it is n's PS edge c' with V'_{c'} = V_{c+1}.
+        let cn = (0..3)
+            .find(|&k| vn[k] == v[(c + 1) % 3] && vn[(k + 1) % 3] == v[c])
+            .expect("neighbours share the edge in opposite directions");
+        let opposite = vn[(cn + 2) % 3];
+        let vertices = [v[0], v[1], v[2], opposite];
+        // Columns of n's corners in the element: its corners are V_{c+1}, V_c and `opposite`.
+        let col_of_n = |k: usize| -> usize {
+            let vertex = vn[k];
+            vertices.iter().position(|&x| x == vertex).unwrap()
+        };
+        let hn = self.piece_hessians(n);
+        let mut e = Element::new(&vertices);
+        // Piece 2c of t (V_c, R, Z) meets piece 2c' + 1 of n (R, V_c, Z'); piece 2c + 1 of t
+        // meets piece 2c' of n.
+        for (mine, theirs) in [(2 * c, 2 * cn + 1), (2 * c + 1, 2 * cn)] {
+            let edge = pieces[mine].v[1] - pieces[mine].v[0];
+            let w = jump_weight(edge.norm_squared(), h[mine].area + hn[theirs].area);
+            for r in 0..3 {
+                let mut jump = [0.0; 12];
+                for k in 0..3 {
+                    for j in 0..3 {
+                        jump[3 * k + j] += h[mine].rows[r][3 * k + j];
+                        jump[3 * col_of_n(k) + j] -= hn[theirs].rows[r][3 * k + j];
+                    }
+                }
+                e.add_square(w * FROBENIUS[r], &jump);
+            }
+        }
+        e
+    }
+}
+
+/// The weight of a Hessian jump across an edge of length² `len2` between two pieces of
+/// total area `area`: 1, down-weighted in proportion to the pieces' thinness across the
+/// edge when 4 × area < len2 (module docs).
+fn jump_weight(len2: f64, area: f64) -> f64 {
+    (4.0 * area / len2).min(1.0)
+}
+
+/// One element's local matrix over its vertices' control values.
+struct Element {
+    vertices: [usize; 4],
+    len: usize,
+    matrix: ElementMatrix,
+}
+
+impl Element {
+    fn new(vertices: &[usize]) -> Self {
+        let mut v = [0; 4];
+        v[..vertices.len()].copy_from_slice(vertices);
+        Element {
+            vertices: v,
+            len: vertices.len(),
+            matrix: [[0.0; 12]; 12],
+        }
+    }
+
+    /// Adds w aaᵀ for the row vector `a` over the element's values.
+    fn add_square(&mut self, w: f64, a: &[f64]) {
+        for (r, &ar) in a.iter().enumerate() {
+            if ar == 0.0 {
+                continue;
+            }
+            for (c, &ac) in a.iter().enumerate() {
+                self.matrix[r][c] += w * ar * ac;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ps::{Hermite, PsSpline, PsTriangleChoice, SplitRule};
+    use crate::test_util::meshes::catalogue;
+    use crate::test_util::*;
+    use std::sync::Arc;
+
+    /// The Hermite PS-spline of the quadratic with coefficients c, and its control values.
+    fn quadratic_spline(basis: &Arc<PsBasis>, c: &[f64; 6]) -> Vec<[f64; 3]> {
+        let data: Vec<Hermite<f64>> = basis
+            .triangulation()
+            .vertices()
+            .iter()
+            .map(|p| Hermite {
+                value: c[0]
+                    + c[1] * p.x
+                    + c[2] * p.y
+                    + c[3] * p.x * p.x
+                    + c[4] * p.x * p.y
+                    + c[5] * p.y * p.y,
+                dx: c[1] + 2.0 * c[3] * p.x + c[4] * p.y,
+                dy: c[2] + c[4] * p.x + 2.0 * c[5] * p.y,
+            })
+            .collect();
+        PsSpline::hermite(basis.clone(), &data)
+            .unwrap()
+            .coefficients()
+            .to_vec()
+    }
+
+    #[test]
+    fn energies_of_quadratics_are_their_closed_forms() {
+        let mut r = rng(81);
+        for (name, t) in catalogue(4) {
+            for rule in [SplitRule::Incenter, SplitRule::Centroid] {
+                let Ok(b) = PsBasis::new(t.clone(), rule, &PsTriangleChoice::Optimal) else {
+                    continue;
+                };
+                let b = Arc::new(b);
+                let area = b.triangulation().area();
+                let thin = b.energy_matrix(Energy::ThinPlate);
+                let jumps = b.energy_matrix(Energy::HessianJumps);
+                for _ in 0..3 {
+                    let c: [f64; 6] = std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0));
+                    let ctrl = quadratic_spline(&b, &c);
+                    // f_xx = 2 c3, f_xy = c4, f_yy = 2 c5.
+                    let exact = area * (4.0 * c[3] * c[3] + 2.0 * c[4] * c[4] + 4.0 * c[5] * c[5]);
+                    // Rounding bound: the form with absolute values, cᵀ|Q|c.
+                    let e = thin.quadratic_form(&ctrl);
+                    let bound = absolute_form(&thin, &ctrl);
+                    assert!(
+                        (e - exact).abs() <= 1e-14 * bound,
+                        "{name}: {e} vs {exact} (bound {bound})"
+                    );
+                    let ej = jumps.quadratic_form(&ctrl);
+                    let bound = absolute_form(&jumps, &ctrl);
+                    assert!(
+                        ej.abs() <= 1e-14 * bound,
+                        "{name}: jump energy {ej} (bound {bound})"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn energies_match_piecewise_second_derivatives_of_random_splines() {
+        let mut r = rng(82);
+        for (name, t) in catalogue(3) {
+            let b = Arc::new(PsBasis::optimal(t.clone()).unwrap());
+            let n = b.triangulation().vertex_count();
+            let ctrl: Vec<[f64; 3]> = (0..n)
+                .map(|_| std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0)))
+                .collect();
+            let s = PsSpline::new(b.clone(), ctrl.clone()).unwrap();
+            // Second derivatives from the evaluated jets at each piece's centroid.
+            let mut thin = 0.0;
+            let mut jumps = 0.0;
+            let hess = |tr: usize, k: usize| {
+                let piece = b.sub_triangle(tr, k);
+                let jet = s.jet_on_patch(crate::ps::PatchId::new(tr, k), piece.centroid());
+                [jet.dxx, jet.dxy, jet.dyy]
+            };
+            let tri = b.triangulation();
+            for tr in 0..tri.triangle_count() {
+                let pieces = b.refinement().sub_triangles(tri, tr);
+                for k in 0..6 {
+                    let h = hess(tr, k);
+                    thin += pieces[k].area() * (h[0] * h[0] + 2.0 * h[1] * h[1] + h[2] * h[2]);
+                    let next = (k + 1) % 6;
+                    let hn = hess(tr, next);
+                    let w = (pieces[k].v[1] - pieces[k].v[2]).norm_squared()
+                        / (pieces[k].area() + pieces[next].area());
+                    jumps += w * sq_frob(h, hn);
+                }
+                for c in 0..3 {
+                    let Some(n) = tri.neighbor(tr, crate::ps::refinement::edge_to_local(c)) else {
+                        continue;
+                    };
+                    if n < tr {
+                        continue;
+                    }
+                    // Find the neighbour's pieces touching each segment by their shared edge points.
+                    let np = b.refinement().sub_triangles(tri, n);
+                    for mine in [2 * c, 2 * c + 1] {
+                        let (a0, a1) = (pieces[mine].v[0], pieces[mine].v[1]);
+                        let theirs = (0..6)
+                            .find(|&k| {
+                                let (b0, b1) = (np[k].v[0], np[k].v[1]);
+                                let close = |p: nalgebra::Point2<f64>, q: nalgebra::Point2<f64>| {
+                                    (p - q).norm() <= 1e-12 * (1.0 + p.coords.norm())
+                                };
+                                close(b0, a1) && close(b1, a0)
+                            })
+                            .unwrap_or_else(|| panic!("{name}: no matching piece"));
+                        let w =
+                            (a1 - a0).norm_squared() / (pieces[mine].area() + np[theirs].area());
+                        jumps += w * sq_frob(hess(tr, mine), hess(n, theirs));
+                    }
+                }
+            }
+            let q_thin = b.energy_matrix(Energy::ThinPlate).quadratic_form(&ctrl);
+            let q_jump = b.energy_matrix(Energy::HessianJumps).quadratic_form(&ctrl);
+            assert!(
+                (q_thin - thin).abs() <= 1e-10 * thin,
+                "{name}: {q_thin} vs {thin}"
+            );
+            assert!(
+                (q_jump - jumps).abs() <= 1e-10 * jumps,
+                "{name}: {q_jump} vs {jumps}"
+            );
+        }
+    }
+
+    /// Σ |Q_ab| |c_a| |c_b|: the size of the terms whose sum is cᵀQc.
+    fn absolute_form(q: &crate::sparse::Block3Matrix, c: &[[f64; 3]]) -> f64 {
+        let abs: Vec<[f64; 3]> = c.iter().map(|x| x.map(f64::abs)).collect();
+        let mut sum = 0.0;
+        for (i, j, b) in q.blocks() {
+            for r in 0..3 {
+                for k in 0..3 {
+                    let t = b[r][k].abs() * abs[i][r] * abs[j][k];
+                    sum += if i == j { t } else { 2.0 * t };
+                }
+            }
+        }
+        sum
+    }
+
+    fn sq_frob(a: [f64; 3], b: [f64; 3]) -> f64 {
+        let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        d[0] * d[0] + 2.0 * d[1] * d[1] + d[2] * d[2]
+    }
+}
