@@ -479,6 +479,61 @@ fn fit_writes_a_surface_that_loads_on_the_issue_12_minimal_case() {
     assert!(info.contains("vertices             6"), "{info}");
 }
 
+/// Issue 12: the global estimator and the smoothing fit from the command line write
+/// surfaces that load, and report what they did.
+#[test]
+fn fit_global_gradients_and_smoothing_fit_write_loadable_surfaces() {
+    let d = tmp();
+    let mut csv = String::from("x,y,z\n");
+    for k in 0..400 {
+        let (x, y) = ((k % 20) as f64 / 19.0, (k / 20) as f64 / 19.0);
+        let noise = if k % 2 == 0 { 0.01 } else { -0.01 };
+        csv += &format!("{x},{y},{}\n", (3.0 * x).sin() * y + noise);
+    }
+    let data = write(d.path(), "n.csv", &csv);
+    let out = d.path().join("g.json");
+    let msg = ok_stderr(&["fit", &s(&data), "-o", &s(&out), "--gradients", "global"]);
+    assert!(msg.contains("Hessian-jump energy"), "{msg}");
+    ok(&["info", &s(&out)]);
+    let out = d.path().join("a.json");
+    let msg = ok_stderr(&["fit", &s(&data), "-o", &s(&out), "--approximate", "60"]);
+    assert!(
+        msg.contains("by GCV") && msg.contains("RMS residual"),
+        "{msg}"
+    );
+    ok(&["info", &s(&out)]);
+    let msg = ok_stderr(&[
+        "fit",
+        &s(&data),
+        "-o",
+        &s(&out),
+        "--approximate",
+        "60",
+        "--smooth",
+        "1e-3",
+    ]);
+    assert!(msg.contains("λ = 1.000e-3"), "{msg}");
+    fails(&[
+        "fit",
+        &s(&data),
+        "-o",
+        &s(&out),
+        "--approximate",
+        "60",
+        "--smooth",
+        "-1",
+    ]);
+    fails(&["fit", &s(&data), "-o", &s(&out), "--smooth", "1"]);
+}
+
+/// Runs pssurf, which must succeed, and returns what it printed on standard error.
+fn ok_stderr(args: &[&str]) -> String {
+    let out = pssurf(args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "pssurf {args:?} failed: {err}");
+    err
+}
+
 /// Issue 12, defect 2, as reported: a 20 × 20 grid with interior points moved by up to 1e-6
 /// gave values from −68 to 114 for z = sin(3x) cos(2y).
 #[test]

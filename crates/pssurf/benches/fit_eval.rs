@@ -5,11 +5,9 @@
 
 mod common;
 
-use std::sync::Arc;
-
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use pssurf::prelude::*;
-use pssurf::scattered::estimate_gradients;
+use pssurf::scattered::{GradientMethod, interpolate};
 use std::hint::black_box;
 
 fn fit_eval(c: &mut Criterion) {
@@ -34,21 +32,7 @@ fn fit_eval(c: &mut Criterion) {
 }
 
 fn fit(pts: &[nalgebra::Point2<f64>], z: &[f64]) -> PsSpline<f64> {
-    let order = pssurf::triangulation::morton_order(pts);
-    let pts: Vec<_> = order.iter().map(|&i| pts[i as usize]).collect();
-    let z: Vec<f64> = order.iter().map(|&i| z[i as usize]).collect();
-    let tri = Triangulation::delaunay(pts).unwrap();
-    let grads = estimate_gradients(&tri, &z).unwrap();
-    let data: Vec<Hermite<f64>> = z
-        .iter()
-        .zip(&grads)
-        .map(|(&value, (g, _))| Hermite {
-            value,
-            dx: g.x,
-            dy: g.y,
-        })
-        .collect();
-    PsSpline::hermite(Arc::new(PsBasis::optimal(tri).unwrap()), &data).unwrap()
+    interpolate(pts, z, GradientMethod::Local).unwrap().spline
 }
 
 criterion_group!(benches, fit_eval);

@@ -2,43 +2,27 @@
 //! estimated gradients stay bounded on nearly gridded data.
 #![cfg(feature = "io")]
 
-use std::sync::Arc;
-
 use pssurf::prelude::*;
-use pssurf::scattered::estimate_gradients;
+use pssurf::scattered::{GradientMethod, interpolate};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-/// The Hermite PS-spline through `(x, y, z)` with estimated gradients, as `pssurf fit` makes
-/// it (Delaunay triangulation, incentre split, optimal PS-triangles).
-fn fit(points: &[Point2<f64>], z: &[f64]) -> PsSpline<f64> {
-    try_fit(points, z).unwrap()
+const METHODS: [GradientMethod; 2] = [GradientMethod::Local, GradientMethod::Global];
+
+/// The interpolant as `pssurf fit` makes it (Delaunay triangulation, incentre split,
+/// optimal PS-triangles) with gradients estimated by `method`.
+fn fit(points: &[Point2<f64>], z: &[f64], method: GradientMethod) -> PsSpline<f64> {
+    try_fit(points, z, method).unwrap()
 }
 
-fn try_fit(points: &[Point2<f64>], z: &[f64]) -> Result<PsSpline<f64>, String> {
-    let tri = Triangulation::delaunay(points.to_vec()).map_err(|e| e.to_string())?;
-    let order: Vec<usize> = (0..tri.vertex_count()).collect();
-    let values: Vec<f64> = order
-        .iter()
-        .map(|&i| {
-            let p = tri.vertex(i);
-            let k = points.iter().position(|q| *q == p).expect("a data point");
-            z[k]
-        })
-        .collect();
-    let g = estimate_gradients(&tri, &values).map_err(|e| e.to_string())?;
-    let basis = PsBasis::new(tri, SplitRule::Incenter, &PsTriangleChoice::Optimal)
-        .map_err(|e| format!("{e:?}"))?;
-    let data: Vec<Hermite<f64>> = values
-        .iter()
-        .zip(&g)
-        .map(|(&value, (g, _))| Hermite {
-            value,
-            dx: g.x,
-            dy: g.y,
-        })
-        .collect();
-    PsSpline::hermite(Arc::new(basis), &data).map_err(|e| e.to_string())
+fn try_fit(
+    points: &[Point2<f64>],
+    z: &[f64],
+    method: GradientMethod,
+) -> Result<PsSpline<f64>, String> {
+    interpolate(points, z, method)
+        .map(|i| i.spline)
+        .map_err(|e| e.to_string())
 }
 
 /// Writes the spline in the file format and reads it back (which validates it).
@@ -151,13 +135,17 @@ fn fit_and_reload(sets: Vec<(String, Vec<Point2<f64>>)>) -> (usize, Vec<String>)
         unique.dedup();
         let z: Vec<f64> = unique.iter().map(|q| (3.0 * q.x).sin() * q.y).collect();
         tried += 1;
-        match try_fit(&unique, &z) {
-            Ok(s) => {
-                if let Err(e) = round_trip(&s) {
-                    failed.push(format!("{name}: the written surface does not load: {e}"));
+        for method in METHODS {
+            match try_fit(&unique, &z, method) {
+                Ok(s) => {
+                    if let Err(e) = round_trip(&s) {
+                        failed.push(format!(
+                            "{name}, {method:?}: the written surface does not load: {e}"
+                        ));
+                    }
                 }
+                Err(e) => failed.push(format!("{name}, {method:?}: no fit: {e}")),
             }
-            Err(e) => failed.push(format!("{name}: no fit: {e}")),
         }
     }
     (tried, failed)
@@ -184,11 +172,11 @@ fn fit_handles_slivers_and_near_duplicates() {
 
 /// The largest error of the fit of sin(3x) cos(2y) on a 20 × 20 grid jittered by `delta`,
 /// over a 40 × 40 grid of the unit square.
-fn grid_error(delta: f64) -> f64 {
+fn grid_error(delta: f64, method: GradientMethod) -> f64 {
     let f = |x: f64, y: f64| (3.0 * x).sin() * (2.0 * y).cos();
     let pts = grid(20, delta, 2);
     let z: Vec<f64> = pts.iter().map(|p| f(p.x, p.y)).collect();
-    let s = fit(&pts, &z);
+    let s = fit(&pts, &z, method);
     let mut at = s.evaluator();
     let mut worst: f64 = 0.0;
     for i in 0..40 {
@@ -203,13 +191,15 @@ fn grid_error(delta: f64) -> f64 {
 
 #[test]
 fn gradients_do_not_explode_on_nearly_gridded_data() {
-    let unperturbed = grid_error(0.0);
-    assert!(unperturbed < 1e-2, "{unperturbed}");
-    for delta in [1e-12, 1e-9, 1e-6, 1e-3] {
-        let e = grid_error(delta);
-        assert!(
-            e < 3.0 * unperturbed,
-            "δ = {delta:e}: max error {e:.3e}, unperturbed {unperturbed:.3e}"
-        );
+    for method in METHODS {
+        let unperturbed = grid_error(0.0, method);
+        assert!(unperturbed < 1e-2, "{method:?}: {unperturbed}");
+        for delta in [1e-12, 1e-9, 1e-6, 1e-3] {
+            let e = grid_error(delta, method);
+            assert!(
+                e < 3.0 * unperturbed,
+                "{method:?}, δ = {delta:e}: max error {e:.3e}, unperturbed {unperturbed:.3e}"
+            );
+        }
     }
 }

@@ -4,9 +4,10 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
-use nalgebra::Point2;
+use nalgebra::{Point2, Vector2};
 use pssurf::prelude::*;
-use pssurf::scattered::{GradientFit, estimate_gradients};
+use pssurf::ps::Energy;
+use pssurf::scattered::{GradientMethod, Smoothing, estimate, hermite_spline, smooth_scattered};
 
 use crate::table::{Table, read_triangles};
 
@@ -28,6 +29,25 @@ impl From<Split> for SplitRule {
     }
 }
 
+/// How to estimate the gradients when the data has none.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Gradients {
+    /// Local weighted quadratic least squares at each vertex (fastest).
+    Local,
+    /// Least Hessian-jump energy over the whole triangulation (one sparse solve; more
+    /// accurate, above all near the boundary).
+    Global,
+}
+
+impl From<Gradients> for GradientMethod {
+    fn from(g: Gradients) -> Self {
+        match g {
+            Gradients::Local => GradientMethod::Local,
+            Gradients::Global => GradientMethod::Global,
+        }
+    }
+}
+
 /// Arguments of `pssurf fit`.
 #[derive(clap::Args, Debug)]
 pub struct FitArgs {
@@ -45,10 +65,69 @@ pub struct FitArgs {
     /// The interior split point of each triangle of the Powell–Sabin refinement.
     #[arg(long, value_enum, default_value_t = Split::Incenter)]
     pub split: Split,
+    /// How to estimate the gradients when the data has no zx, zy. `local` is the default:
+    /// on real elevation data it is the more accurate (docs/performance.md, "Accuracy").
+    #[arg(long, value_enum, default_value_t = Gradients::Local)]
+    pub gradients: Gradients,
+    /// Approximate instead of interpolating: a least-squares PS-spline on the Delaunay
+    /// triangulation of about M of the points (hull corners plus a spatially even sample).
+    #[arg(long, value_name = "M")]
+    pub approximate: Option<usize>,
+    /// With --approximate: the smoothing weight λ of Σ residual² + λ·energy, or `gcv` to
+    /// choose it by generalised cross-validation.
+    #[arg(
+        long,
+        value_name = "λ|gcv",
+        default_value = "gcv",
+        requires = "approximate"
+    )]
+    pub smooth: SmoothArg,
+    /// With --approximate: the energy that λ weighs.
+    #[arg(long, value_enum, default_value_t = EnergyArg::HessianJumps, requires = "approximate")]
+    pub energy: EnergyArg,
+}
+
+/// The value of `--smooth`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SmoothArg(Smoothing);
+
+impl std::str::FromStr for SmoothArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s.eq_ignore_ascii_case("gcv") {
+            return Ok(SmoothArg(Smoothing::Gcv));
+        }
+        match s.parse::<f64>() {
+            Ok(l) if l >= 0.0 && l.is_finite() => Ok(SmoothArg(Smoothing::Fixed(l))),
+            _ => Err(format!("expected a finite λ ≥ 0 or `gcv`, not `{s}`")),
+        }
+    }
+}
+
+/// The energy of a smoothing fit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum EnergyArg {
+    /// Jumps of the Hessian across the PS refinement's edges (~∫‖∇³s‖²; smooths towards a
+    /// quadratic).
+    HessianJumps,
+    /// ∫ s_xx² + 2 s_xy² + s_yy² (smooths towards a plane).
+    ThinPlate,
+}
+
+impl From<EnergyArg> for Energy {
+    fn from(e: EnergyArg) -> Self {
+        match e {
+            EnergyArg::HessianJumps => Energy::HessianJumps,
+            EnergyArg::ThinPlate => Energy::ThinPlate,
+        }
+    }
 }
 
 /// Runs `pssurf fit`.
 pub fn run(args: &FitArgs) -> Result<()> {
+    if let Some(m) = args.approximate {
+        return approximate(args, m);
+    }
     let table = Table::read(&args.data)?;
     let col = |name: &str| table.column(name);
     let (Some(x), Some(y), Some(z)) = (col("x"), col("y"), col("z")) else {
@@ -102,42 +181,33 @@ pub fn run(args: &FitArgs) -> Result<()> {
         })?,
     };
     warn_slivers(&tri, &row_of);
-    let (gradients, method) = match grads {
-        Some((a, b)) => {
-            let g: Vec<(f64, f64)> = rows.iter().map(|r| (r[a], r[b])).collect();
-            (g, "given in the data (zx, zy)".to_string())
-        }
-        None => {
-            let est = estimate_gradients(&tri, &values)?;
-            let linear = est
-                .iter()
-                .filter(|(_, k)| *k == GradientFit::Linear)
-                .count();
-            let wide = est
-                .iter()
-                .filter(|(_, k)| matches!(k, GradientFit::Quadratic { rings } if *rings > 1))
-                .count();
-            let g = est.iter().map(|(g, _)| (g.x, g.y)).collect();
-            let mut m = "estimated by local weighted quadratic least squares".to_string();
-            if wide > 0 || linear > 0 {
-                m += &format!(
-                    " ({wide} vertices needed a wider neighbourhood, {linear} a plane fit)"
-                );
-            }
-            (g, m)
-        }
-    };
     let basis = Arc::new(PsBasis::new(
         tri,
         args.split.into(),
         &PsTriangleChoice::Optimal,
     )?);
-    let data: Vec<Hermite<f64>> = values
-        .iter()
-        .zip(&gradients)
-        .map(|(&value, &(dx, dy))| Hermite { value, dx, dy })
-        .collect();
-    let spline = PsSpline::hermite(basis.clone(), &data)?;
+    let (gradients, method) = match grads {
+        Some((a, b)) => {
+            let g: Vec<Vector2<f64>> = rows.iter().map(|r| Vector2::new(r[a], r[b])).collect();
+            (g, "given in the data (zx, zy)".to_string())
+        }
+        None => {
+            let (g, report) = estimate(&basis, &values, args.gradients.into())?;
+            let mut m = match args.gradients {
+                Gradients::Local => "estimated by local weighted quadratic least squares",
+                Gradients::Global => "estimated by least Hessian-jump energy (global)",
+            }
+            .to_string();
+            if report.widened > 0 || report.planar > 0 {
+                m += &format!(
+                    " (local fits: {} vertices needed a wider neighbourhood, {} a plane)",
+                    report.widened, report.planar
+                );
+            }
+            (g, m)
+        }
+    };
+    let spline = hermite_spline(basis.clone(), &values, &gradients)?;
     let t = basis.triangulation();
     pssurf::io::save(&Surface::from(spline), &args.output)?;
     eprintln!(
@@ -148,6 +218,67 @@ pub fn run(args: &FitArgs) -> Result<()> {
             ", given"
         } else {
             ", Delaunay"
+        },
+        args.output.display()
+    );
+    Ok(())
+}
+
+/// `pssurf fit --approximate M`: the smoothing fit.
+fn approximate(args: &FitArgs, m: usize) -> Result<()> {
+    if args.triangles.is_some() {
+        bail!(
+            "--approximate makes its own coarse triangulation; it cannot be combined with --triangles"
+        );
+    }
+    if m < 3 {
+        bail!("--approximate {m}: needs at least 3 vertices");
+    }
+    let table = Table::read(&args.data)?;
+    let col = |name: &str| table.column(name);
+    let (Some(x), Some(y), Some(z)) = (col("x"), col("y"), col("z")) else {
+        bail!(
+            "{}: needs columns x,y,z (found: {})",
+            args.data.display(),
+            table.headers.join(",")
+        );
+    };
+    let points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
+    let values: Vec<f64> = table.rows.iter().map(|r| r[z]).collect();
+    let row_of: Vec<usize> = (0..points.len()).collect();
+    warn_near_duplicates(&points, &row_of);
+    let fit =
+        smooth_scattered(&points, &values, m, args.energy.into(), args.smooth.0).map_err(|e| {
+            match e {
+                pssurf::scattered::SmoothingError::Triangulation(
+                    TriangulationError::DuplicateVertex { first, second },
+                ) => anyhow::anyhow!(
+                    "{}: rows {} and {} have the same (x, y); remove one",
+                    args.data.display(),
+                    first + 1,
+                    second + 1
+                ),
+                e => anyhow::anyhow!("{}: {e}", args.data.display()),
+            }
+        })?;
+    let t = fit.spline.basis().triangulation();
+    let (vertices, triangles) = (t.vertex_count(), t.triangle_count());
+    pssurf::io::save(&Surface::from(fit.spline), &args.output)?;
+    eprintln!(
+        "smoothing fit of {} points on {vertices} vertices ({triangles} triangles): λ = {:.3e}{}, RMS residual {:.4e}, effective degrees of freedom {:.1}{}; wrote {}",
+        points.len(),
+        fit.lambda,
+        if args.smooth.0 == Smoothing::Gcv {
+            " (by GCV)"
+        } else {
+            ""
+        },
+        fit.rms_residual,
+        fit.effective_dof,
+        if fit.dof_estimated {
+            " (estimated)"
+        } else {
+            ""
         },
         args.output.display()
     );

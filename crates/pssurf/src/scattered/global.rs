@@ -1,0 +1,108 @@
+//! The global gradient estimator: the gradients whose Hermite PS-spline through the values
+//! has the least Hessian-jump energy ([`Energy::HessianJumps`]), found by one sparse solve.
+//!
+//! With values f_i fixed and gradients g_i free, the control values are c_ij = f_i +
+//! g_i · (Q_ij − V_i) (the Hermite map of [`PsBasis::hermite_coefficients`]), so the energy
+//! is a quadratic in g: ½ gᵀ A g − bᵀ g + const, with A sparse and symmetric positive
+//! semi-definite (2 unknowns per vertex, coupling vertices that share a triangle or an edge
+//! of two triangles). The energy vanishes on quadratics, so their exact gradients are a
+//! minimiser and quadratics are reproduced. Because every vertex's gradient is coupled to
+//! all others, a boundary vertex uses the data beyond its one-sided neighbourhood — where
+//! local fits extrapolate.
+//!
+//! A small anchor η × (the vertex's own stiffness) × ‖g_i − g_i^local‖² to the local
+//! estimate ([`super::estimate_gradients`], itself exact on quadratics) makes A positive
+//! definite on every triangulation (the jump energy alone cannot fix a quadratic that
+//! vanishes at all vertices, e.g. when they lie on two lines) without spoiling
+//! quadratic reproduction.
+
+use nalgebra::Vector2;
+
+use super::local::{GradientError, estimate_gradients};
+use crate::ps::{Energy, PsBasis};
+use crate::sparse::{SparseError, SpdPattern};
+
+/// The anchor's weight relative to each vertex's own stiffness (see the module docs).
+/// Measured on Franke's function (docs/performance.md): 1e-3 changes the error by under
+/// 1 % against 1e-6, and keeps the system's condition number moderate.
+pub const ANCHOR: f64 = 1e-3;
+
+/// The global estimate failed.
+#[derive(Clone, Debug, thiserror::Error, PartialEq)]
+pub enum GlobalGradientError {
+    /// The local estimate that anchors it failed.
+    #[error(transparent)]
+    Local(#[from] GradientError),
+    /// The sparse solve failed.
+    #[error("the global gradient system: {0}")]
+    Solve(#[from] SparseError),
+}
+
+/// The gradients minimising the Hessian-jump energy of the Hermite PS-spline with these
+/// vertex values (module docs).
+pub fn estimate_gradients_global(
+    basis: &PsBasis,
+    values: &[f64],
+) -> Result<Vec<Vector2<f64>>, GlobalGradientError> {
+    let tri = basis.triangulation();
+    let n = tri.vertex_count();
+    assert_eq!(values.len(), n, "one value per vertex");
+    let local: Vec<Vector2<f64>> = estimate_gradients(tri, values)?
+        .into_iter()
+        .map(|(g, _)| g)
+        .collect();
+    let q = basis.energy_matrix(Energy::HessianJumps);
+    let hermite: Vec<[[f64; 3]; 3]> = (0..n).map(|i| hermite_map(basis, i)).collect();
+    let mut positions = Vec::with_capacity(4 * q.block_count());
+    let mut entries = Vec::with_capacity(4 * q.block_count());
+    let mut rhs = vec![0.0; 2 * n];
+    for (i, j, block) in q.blocks() {
+        // The block in Hermite unknowns (f, g_x, g_y): Tᵢᵀ B Tⱼ.
+        let h = congruence(&hermite[i], block, &hermite[j]);
+        for a in 0..2 {
+            for b in 0..2 {
+                if i != j || b <= a {
+                    positions.push((2 * i + a, 2 * j + b));
+                    entries.push(h[1 + a][1 + b]);
+                }
+            }
+            // The value terms move to the right-hand side (both halves of a symmetric pair).
+            rhs[2 * i + a] -= h[1 + a][0] * values[j];
+            if i != j {
+                rhs[2 * j + a] -= h[0][1 + a] * values[i];
+            }
+        }
+        if i == j {
+            let mu = ANCHOR * 0.5 * (h[1][1] + h[2][2]);
+            let k = entries.len();
+            // The diagonal entries of this block are at k − 3 (aa) and k − 1 (bb).
+            entries[k - 3] += mu;
+            entries[k - 1] += mu;
+            rhs[2 * i] += mu * local[i].x;
+            rhs[2 * i + 1] += mu * local[i].y;
+        }
+    }
+    let pattern = SpdPattern::new(2 * n, &positions)?;
+    let g = pattern.factor(&entries)?.solve(&rhs);
+    Ok((0..n)
+        .map(|i| Vector2::new(g[2 * i], g[2 * i + 1]))
+        .collect())
+}
+
+/// The 3 × 3 matrix taking vertex i's Hermite data (f, f_x, f_y) to its control values:
+/// row j is (1, X_ij − x_i, Y_ij − y_i) ([`PsBasis::hermite_coefficients`]).
+fn hermite_map(basis: &PsBasis, i: usize) -> [[f64; 3]; 3] {
+    let v = basis.triangulation().vertex(i);
+    basis.ps_triangle(i).v.map(|q| [1.0, q.x - v.x, q.y - v.y])
+}
+
+/// Tᵢᵀ B Tⱼ.
+fn congruence(ti: &[[f64; 3]; 3], b: &[[f64; 3]; 3], tj: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let mut bt = [[0.0; 3]; 3];
+    for r in 0..3 {
+        for c in 0..3 {
+            bt[r][c] = (0..3).map(|k| b[r][k] * tj[k][c]).sum();
+        }
+    }
+    std::array::from_fn(|r| std::array::from_fn(|c| (0..3).map(|k| ti[k][r] * bt[k][c]).sum()))
+}

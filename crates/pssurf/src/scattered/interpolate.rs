@@ -1,0 +1,155 @@
+//! The Hermite PS-spline through scattered values: triangulate, estimate gradients, build
+//! the basis and interpolate — the job of `pssurf fit`, as one library call.
+
+use std::sync::Arc;
+
+use nalgebra::{Point2, Vector2};
+
+use super::global::{GlobalGradientError, estimate_gradients_global};
+use super::local::{GradientError, GradientFit, estimate_gradients};
+use crate::ps::{Hermite, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule};
+use crate::triangulation::{Triangulation, TriangulationError, duplicate_points, morton_order};
+
+/// How the gradients at the vertices are estimated from the values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GradientMethod {
+    /// Local weighted quadratic least squares at each vertex
+    /// ([`estimate_gradients`](super::estimate_gradients)): O(n), embarrassingly parallel.
+    /// The default: the more accurate on real (rough) elevation data (docs/performance.md).
+    #[default]
+    Local,
+    /// The minimum Hessian-jump energy over the whole triangulation
+    /// ([`estimate_gradients_global`](super::estimate_gradients_global)): one sparse solve;
+    /// 1.2–1.6× more accurate on smooth functions, less on rough data.
+    Global,
+}
+
+/// Why an interpolant could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum FitError {
+    /// Values and points differ in number.
+    #[error("{points} points but {values} values")]
+    Mismatch {
+        /// The number of points.
+        points: usize,
+        /// The number of values.
+        values: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("the value of point {0} is not finite")]
+    NonFiniteValue(usize),
+    /// The points cannot be triangulated (duplicates, collinear, non-finite…).
+    #[error(transparent)]
+    Triangulation(#[from] TriangulationError),
+    /// The local gradient estimate failed.
+    #[error(transparent)]
+    Gradient(#[from] GradientError),
+    /// The global gradient estimate failed.
+    #[error(transparent)]
+    GlobalGradient(#[from] GlobalGradientError),
+    /// The PS basis or the spline could not be built.
+    #[error(transparent)]
+    Ps(#[from] PsError),
+}
+
+/// How the gradients of an interpolant were obtained.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GradientReport {
+    /// The method used.
+    pub method: GradientMethod,
+    /// Vertices whose local fit needed more than the first ring of neighbours.
+    pub widened: usize,
+    /// Vertices whose local fit fell back to a plane.
+    pub planar: usize,
+}
+
+/// The gradients at the vertices of `basis`'s triangulation from the values there.
+pub fn estimate(
+    basis: &PsBasis,
+    values: &[f64],
+    method: GradientMethod,
+) -> Result<(Vec<Vector2<f64>>, GradientReport), FitError> {
+    let local = estimate_gradients(basis.triangulation(), values)?;
+    let report = GradientReport {
+        method,
+        widened: local
+            .iter()
+            .filter(|(_, k)| matches!(k, GradientFit::Quadratic { rings } if *rings > 1))
+            .count(),
+        planar: local
+            .iter()
+            .filter(|(_, k)| *k == GradientFit::Linear)
+            .count(),
+    };
+    let gradients = match method {
+        GradientMethod::Local => local.into_iter().map(|(g, _)| g).collect(),
+        GradientMethod::Global => estimate_gradients_global(basis, values)?,
+    };
+    Ok((gradients, report))
+}
+
+/// The Hermite PS-spline on `basis` with these vertex values and gradients.
+pub fn hermite_spline(
+    basis: Arc<PsBasis>,
+    values: &[f64],
+    gradients: &[Vector2<f64>],
+) -> Result<PsSpline<f64>, PsError> {
+    let data: Vec<Hermite<f64>> = values
+        .iter()
+        .zip(gradients)
+        .map(|(&value, g)| Hermite {
+            value,
+            dx: g.x,
+            dy: g.y,
+        })
+        .collect();
+    PsSpline::hermite(basis, &data)
+}
+
+/// An interpolant of scattered data and how it was made.
+#[derive(Clone, Debug)]
+pub struct Interpolant {
+    /// The PS-spline; its vertex k is data point `data_index[k]`.
+    pub spline: PsSpline<f64>,
+    /// The data point of each vertex (vertices are ordered along a space-filling curve).
+    pub data_index: Vec<usize>,
+    /// How the gradients were estimated.
+    pub gradients: GradientReport,
+}
+
+/// The Hermite PS-spline through (points[k], values[k]) on their Delaunay triangulation,
+/// with the incentre split and optimal PS-triangles, and gradients estimated by `method`.
+pub fn interpolate(
+    points: &[Point2<f64>],
+    values: &[f64],
+    method: GradientMethod,
+) -> Result<Interpolant, FitError> {
+    if points.len() != values.len() {
+        return Err(FitError::Mismatch {
+            points: points.len(),
+            values: values.len(),
+        });
+    }
+    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+        return Err(FitError::NonFiniteValue(k));
+    }
+    if let Some((first, second)) = duplicate_points(points) {
+        return Err(TriangulationError::DuplicateVertex { first, second }.into());
+    }
+    // A space-filling-curve order keeps neighbouring vertices close in memory.
+    let data_index: Vec<usize> = morton_order(points).iter().map(|&i| i as usize).collect();
+    let ordered: Vec<Point2<f64>> = data_index.iter().map(|&k| points[k]).collect();
+    let z: Vec<f64> = data_index.iter().map(|&k| values[k]).collect();
+    let tri = Triangulation::delaunay(ordered)?;
+    let basis = Arc::new(PsBasis::new(
+        tri,
+        SplitRule::Incenter,
+        &PsTriangleChoice::Optimal,
+    )?);
+    let (g, gradients) = estimate(&basis, &z, method)?;
+    Ok(Interpolant {
+        spline: hermite_spline(basis, &z, &g)?,
+        data_index,
+        gradients,
+    })
+}

@@ -1,0 +1,20 @@
+//! Scattered data on triangulations: the gradients that Hermite interpolation (2.30) needs
+//! when only values are known, interpolation, and smoothing fits.
+
+mod coarse;
+mod diagnostics;
+mod global;
+mod interpolate;
+mod local;
+mod smoothing;
+
+pub use coarse::coarse_vertices;
+pub use diagnostics::{NearDuplicate, near_duplicates, slivers};
+pub use global::{ANCHOR, GlobalGradientError, estimate_gradients_global};
+pub use interpolate::{
+    FitError, GradientMethod, GradientReport, Interpolant, estimate, hermite_spline, interpolate,
+};
+pub use local::{
+    GradientError, GradientFit, MAX_CONDITION, MAX_USABLE_CONDITION, estimate_gradients,
+};
+pub use smoothing::{Smoothing, SmoothingError, SmoothingFit, smooth_scattered, smoothing_fit};

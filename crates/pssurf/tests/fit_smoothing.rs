@@ -1,0 +1,171 @@
+//! Issue 12: smoothing fits of noisy data beat the noise and the interpolant, GCV picks a
+//! good λ, and with λ → 0 on every point the fit is the interpolant.
+
+use nalgebra::Point2;
+use pssurf::ps::Energy;
+use pssurf::scattered::{GradientMethod, Smoothing, interpolate, smooth_scattered};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+
+fn f(p: Point2<f64>) -> f64 {
+    (3.0 * p.x).sin() * (2.0 * p.y).cos() + 0.5 * p.x * p.y
+}
+
+fn points(n: usize, seed: u64) -> Vec<Point2<f64>> {
+    let mut r = ChaCha8Rng::seed_from_u64(seed);
+    let mut pts = vec![
+        Point2::new(0.0, 0.0),
+        Point2::new(1.0, 0.0),
+        Point2::new(0.0, 1.0),
+        Point2::new(1.0, 1.0),
+    ];
+    while pts.len() < n {
+        pts.push(Point2::new(r.random(), r.random()));
+    }
+    pts
+}
+
+/// The RMS error to f at a 60 × 60 grid.
+fn rms_to_truth(eval: impl Fn(Point2<f64>) -> f64) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..60 {
+        for j in 0..60 {
+            let p = Point2::new(i as f64 / 59.0, j as f64 / 59.0);
+            sum += (eval(p) - f(p)).powi(2);
+        }
+    }
+    (sum / 3600.0).sqrt()
+}
+
+#[test]
+fn smoothing_beats_the_noise_and_the_interpolant_and_gcv_picks_a_good_lambda() {
+    let sigma = 0.05;
+    let pts = points(2000, 1);
+    let mut r = ChaCha8Rng::seed_from_u64(2);
+    let noise = Normal::new(0.0, sigma).unwrap();
+    let z: Vec<f64> = pts.iter().map(|&p| f(p) + noise.sample(&mut r)).collect();
+    for energy in [Energy::HessianJumps, Energy::ThinPlate] {
+        let fit = smooth_scattered(&pts, &z, 300, energy, Smoothing::Gcv).unwrap();
+        let err = rms_to_truth(|p| fit.spline.eval(p).unwrap());
+        let interp = interpolate(&pts, &z, GradientMethod::Global)
+            .unwrap()
+            .spline;
+        let err_interp = rms_to_truth(|p| interp.eval(p).unwrap());
+        // The error-optimal λ over a fine scan.
+        let mut scan: Vec<(f64, f64)> = (-40..=16)
+            .map(|k| {
+                let lambda = fit.lambda * 10f64.powf(k as f64 / 4.0);
+                let s = smooth_scattered(&pts, &z, 300, energy, Smoothing::Fixed(lambda)).unwrap();
+                (lambda, rms_to_truth(|p| s.spline.eval(p).unwrap()))
+            })
+            .collect();
+        scan.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let (best_lambda, best_err) = scan[0];
+        eprintln!(
+            "{energy:?}: σ {sigma}, smoothing error {err:.4} (λ {:.3e}, dof {:.1}, rms residual {:.4}), interpolant {err_interp:.4}, best λ {best_lambda:.3e} error {best_err:.4}",
+            fit.lambda, fit.effective_dof, fit.rms_residual
+        );
+        assert!(
+            err < sigma && err < err_interp,
+            "{energy:?}: {err} vs σ {sigma}, interpolant {err_interp}"
+        );
+        let ratio = fit.lambda / best_lambda;
+        assert!(
+            (0.1..=10.0).contains(&ratio),
+            "{energy:?}: GCV λ {} vs best {best_lambda}",
+            fit.lambda
+        );
+        // The residual is about the noise (N − dof degrees of freedom left to it).
+        assert!(
+            (fit.rms_residual / sigma - 1.0).abs() < 0.2,
+            "{}",
+            fit.rms_residual
+        );
+    }
+}
+
+#[test]
+fn with_lambda_to_zero_on_every_point_the_fit_is_the_interpolant() {
+    // Well-shaped triangles: on sets with sliver triangles along the boundary the
+    // minimum-energy gradients there are weakly determined, and the global estimator's anchor
+    // (ANCHOR = 1e-3) moves the interpolant by up to 1e-1 (measured on 300 random points).
+    let pts = grid_points(18, 3);
+    let z: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
+    let interp = interpolate(&pts, &z, GradientMethod::Global)
+        .unwrap()
+        .spline;
+    let mut previous = (f64::INFINITY, f64::INFINITY);
+    for lambda in [1e-8, 1e-10, 1e-12, 1e-14, 1e-16] {
+        let fit = smooth_scattered(
+            &pts,
+            &z,
+            pts.len(),
+            Energy::HessianJumps,
+            Smoothing::Fixed(lambda),
+        )
+        .unwrap();
+        let mut worst: f64 = 0.0;
+        for i in 0..=50 {
+            for j in 0..=50 {
+                let p = Point2::new(i as f64 / 50.0, j as f64 / 50.0);
+                worst = worst.max((fit.spline.eval(p).unwrap() - interp.eval(p).unwrap()).abs());
+            }
+        }
+        eprintln!(
+            "λ = {lambda:e}, M = N: rms residual {:.2e}, largest difference to the interpolant {worst:.2e}",
+            fit.rms_residual
+        );
+        // The residual shrinks linearly with λ; the difference to the interpolant shrinks to
+        // the effect of the global estimator's small anchor to the local gradients.
+        assert!(
+            fit.rms_residual < 0.05 * previous.0,
+            "{} after {}",
+            fit.rms_residual,
+            previous.0
+        );
+        assert!(worst <= previous.1 * 1.01, "{worst} after {}", previous.1);
+        previous = (fit.rms_residual, worst);
+    }
+    assert!(previous.0 < 1e-10 && previous.1 < 1e-5, "{previous:?}");
+}
+
+#[test]
+fn vertices_without_data_are_fixed_by_the_energy() {
+    // Data only in the left half and two far corners; the coarse triangulation has vertices
+    // in the empty right half.
+    let mut pts: Vec<Point2<f64>> = points(800, 4).into_iter().filter(|p| p.x < 0.5).collect();
+    pts.extend([Point2::new(1.0, 0.0), Point2::new(1.0, 1.0)]);
+    let z: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
+    for energy in [Energy::HessianJumps, Energy::ThinPlate] {
+        let fit = smooth_scattered(&pts, &z, 100, energy, Smoothing::Fixed(1e-6)).unwrap();
+        for p in [Point2::new(0.9, 0.5), Point2::new(0.7, 0.2)] {
+            let v = fit.spline.eval(p).unwrap();
+            assert!(v.is_finite() && v.abs() < 10.0, "{energy:?}: {v}");
+        }
+    }
+}
+
+/// A k × k grid of the unit square with every point moved by up to a quarter spacing.
+fn grid_points(k: usize, seed: u64) -> Vec<Point2<f64>> {
+    let mut r = ChaCha8Rng::seed_from_u64(seed);
+    let h = 1.0 / (k - 1) as f64;
+    let mut pts = Vec::new();
+    for i in 0..k {
+        for j in 0..k {
+            let inner = |a: usize| a > 0 && a + 1 < k;
+            let dx = if inner(i) {
+                r.random_range(-0.25..0.25) * h
+            } else {
+                0.0
+            };
+            let dy = if inner(j) {
+                r.random_range(-0.25..0.25) * h
+            } else {
+                0.0
+            };
+            pts.push(Point2::new(i as f64 * h + dx, j as f64 * h + dy));
+        }
+    }
+    pts
+}
