@@ -335,8 +335,8 @@ mod tests {
                     thin += pieces[k].area() * (h[0] * h[0] + 2.0 * h[1] * h[1] + h[2] * h[2]);
                     let next = (k + 1) % 6;
                     let hn = hess(tr, next);
-                    let w = (pieces[k].v[1] - pieces[k].v[2]).norm_squared()
-                        / (pieces[k].area() + pieces[next].area());
+                    let len2 = (pieces[k].v[1] - pieces[k].v[2]).norm_squared();
+                    let w = (4.0 * (pieces[k].area() + pieces[next].area()) / len2).min(1.0);
                     jumps += w * sq_frob(h, hn);
                 }
                 for c in 0..3 {
@@ -359,8 +359,9 @@ mod tests {
                                 close(b0, a1) && close(b1, a0)
                             })
                             .unwrap_or_else(|| panic!("{name}: no matching piece"));
-                        let w =
-                            (a1 - a0).norm_squared() / (pieces[mine].area() + np[theirs].area());
+                        let w = (4.0 * (pieces[mine].area() + np[theirs].area())
+                            / (a1 - a0).norm_squared())
+                        .min(1.0);
                         jumps += w * sq_frob(hess(tr, mine), hess(n, theirs));
                     }
                 }
