@@ -526,6 +526,38 @@ fn fit_global_gradients_and_smoothing_fit_write_loadable_surfaces() {
     fails(&["fit", &s(&data), "-o", &s(&out), "--smooth", "1"]);
 }
 
+/// Writing through a symbolic link updates the file it points to and keeps the link; a
+/// directory or a missing directory as output is one clear error.
+#[cfg(unix)]
+#[test]
+fn outputs_never_replace_links_or_directories() {
+    let d = tmp();
+    let real = d.path().join("real.json");
+    let link = d.path().join("link.json");
+    std::os::unix::fs::symlink(&real, &link).unwrap();
+    ok(&["fit", &example("franke.csv"), "-o", &s(&link)]);
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    ok(&["info", &s(&real)]);
+    let e = fails(&["fit", &example("franke.csv"), "-o", &s(d.path())]);
+    assert!(
+        e.contains("is a directory") && e.trim_end().lines().count() == 1,
+        "{e}"
+    );
+    let missing = d.path().join("no").join("o.json");
+    let e = fails(&["fit", &example("franke.csv"), "-o", &s(&missing)]);
+    assert!(e.contains("does not exist"), "{e}");
+    assert_eq!(
+        std::fs::read_dir(d.path()).unwrap().count(),
+        2,
+        "real and link only"
+    );
+}
+
 /// Runs pssurf, which must succeed, and returns what it printed on standard error.
 fn ok_stderr(args: &[&str]) -> String {
     let out = pssurf(args);

@@ -1,7 +1,7 @@
 //! Writing files so that a failure never destroys the previous version.
 
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// How much a write must survive.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,11 +17,21 @@ pub enum Durability {
 /// Writes `path` through `fill` into a temporary file in the same directory, then renames it
 /// over `path`. If `fill` or any write fails, `path` is left untouched and the temporary file
 /// is removed.
+///
+/// What is at `path` is never replaced by something else: a symbolic link keeps pointing
+/// where it did (the file it points to is replaced atomically; a dangling link is an
+/// error), and a special file (a device such as `/dev/null` or `/dev/stdout`, a FIFO, a
+/// socket) is written into directly, as a stream. A directory is an error.
 pub fn atomic_write<E: From<std::io::Error>>(
     path: &Path,
     durability: Durability,
     fill: impl FnOnce(&mut dyn Write) -> Result<(), E>,
 ) -> Result<(), E> {
+    let path = match target(path)? {
+        Target::Stream => return write_stream(path, fill),
+        Target::File(p) => p,
+    };
+    let path = path.as_path();
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -53,6 +63,91 @@ pub fn atomic_write<E: From<std::io::Error>>(
     Ok(())
 }
 
+/// Where a write to a path goes.
+enum Target {
+    /// Replace this regular file (or create it) atomically.
+    File(PathBuf),
+    /// Write into the existing special file as a stream.
+    Stream,
+}
+
+/// Resolves what is at `path` (module docs of [`atomic_write`]).
+fn target(path: &Path) -> std::io::Result<Target> {
+    use std::io::{Error, ErrorKind};
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        // Nothing there yet: the directory must exist.
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+            && !dir.is_dir()
+        {
+            return Err(Error::new(
+                ErrorKind::NotFound,
+                format!("the directory {} does not exist", dir.display()),
+            ));
+        }
+        return Ok(Target::File(path.to_path_buf()));
+    };
+    if meta.file_type().is_symlink() {
+        return match std::fs::metadata(path) {
+            Ok(m) if m.is_dir() => Err(Error::new(ErrorKind::IsADirectory, "is a directory")),
+            Ok(m) if m.is_file() => Ok(Target::File(std::fs::canonicalize(path)?)),
+            // A link to a device or a pipe (/dev/stdout): write into it.
+            Ok(_) => Ok(Target::Stream),
+            // A link to a file not there yet: create the file it names.
+            Err(_) => link_end(path).map(Target::File),
+        };
+    }
+    if meta.is_dir() {
+        return Err(Error::new(ErrorKind::IsADirectory, "is a directory"));
+    }
+    if meta.is_file() {
+        Ok(Target::File(path.to_path_buf()))
+    } else {
+        Ok(Target::Stream)
+    }
+}
+
+/// The path that a chain of symbolic links ends at, when that end does not exist yet (its
+/// directory must).
+fn link_end(path: &Path) -> std::io::Result<PathBuf> {
+    use std::io::{Error, ErrorKind};
+    let mut at = path.to_path_buf();
+    for _ in 0..40 {
+        let next = std::fs::read_link(&at)?;
+        at = match at.parent() {
+            Some(dir) if next.is_relative() => dir.join(next),
+            _ => next,
+        };
+        if std::fs::symlink_metadata(&at).is_err() {
+            return match at.parent() {
+                Some(dir) if dir.as_os_str().is_empty() || dir.is_dir() => Ok(at),
+                _ => Err(Error::new(
+                    ErrorKind::NotFound,
+                    format!(
+                        "is a symbolic link to {}, in a directory that does not exist",
+                        at.display()
+                    ),
+                )),
+            };
+        }
+    }
+    Err(Error::new(
+        ErrorKind::InvalidInput,
+        "is a loop of symbolic links",
+    ))
+}
+
+/// Writes into an existing special file (device, FIFO, socket) without replacing it.
+fn write_stream<E: From<std::io::Error>>(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> Result<(), E>,
+) -> Result<(), E> {
+    let file = std::fs::OpenOptions::new().write(true).open(path)?;
+    let mut w = BufWriter::with_capacity(1 << 20, file);
+    fill(&mut w)?;
+    w.flush()?;
+    Ok(())
+}
+
 /// Writes `bytes` to `path` atomically (see [`atomic_write`]).
 pub fn atomic_write_bytes(
     path: &Path,
@@ -78,5 +173,76 @@ mod tests {
         atomic_write_bytes(&path, Durability::Durable, b"two").unwrap();
         assert_eq!(mode(&path), 0o640);
         assert_eq!(std::fs::read(&path).unwrap(), b"two");
+    }
+
+    #[test]
+    fn symbolic_links_and_special_files_are_never_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        // A link to a file: the link stays, the file it points to gets the content.
+        let file = dir.path().join("real.txt");
+        std::fs::write(&file, b"old").unwrap();
+        let link = dir.path().join("link.txt");
+        std::os::unix::fs::symlink(&file, &link).unwrap();
+        atomic_write_bytes(&link, Durability::Atomic, b"new").unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read(&file).unwrap(), b"new");
+        // A link to a file not there yet: the file is created, the link kept. A link into a
+        // missing directory, or a loop: an error, and the link is left alone.
+        let dangling = dir.path().join("dangling.txt");
+        std::os::unix::fs::symlink("created.txt", &dangling).unwrap();
+        atomic_write_bytes(&dangling, Durability::Atomic, b"x").unwrap();
+        assert_eq!(std::fs::read(dir.path().join("created.txt")).unwrap(), b"x");
+        assert!(
+            std::fs::symlink_metadata(&dangling)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        let nowhere = dir.path().join("nowhere.txt");
+        std::os::unix::fs::symlink(dir.path().join("no/dir.txt"), &nowhere).unwrap();
+        let e = atomic_write_bytes(&nowhere, Durability::Atomic, b"x").unwrap_err();
+        assert!(e.to_string().contains("does not exist"), "{e}");
+        let looped = dir.path().join("loop.txt");
+        std::os::unix::fs::symlink("loop.txt", &looped).unwrap();
+        let e = atomic_write_bytes(&looped, Durability::Atomic, b"x").unwrap_err();
+        assert!(e.to_string().contains("loop"), "{e}");
+        // A FIFO is written into, and is still a FIFO afterwards.
+        use std::os::unix::fs::FileTypeExt;
+        let fifo = dir.path().join("pipe");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        let has_fifo = made.is_ok_and(|s| s.success());
+        if has_fifo {
+            let reader = {
+                let fifo = fifo.clone();
+                std::thread::spawn(move || std::fs::read(fifo).unwrap())
+            };
+            atomic_write_bytes(&fifo, Durability::Durable, b"through").unwrap();
+            assert_eq!(reader.join().unwrap(), b"through");
+            assert!(
+                std::fs::symlink_metadata(&fifo)
+                    .unwrap()
+                    .file_type()
+                    .is_fifo()
+            );
+        } else {
+            eprintln!("skipped the FIFO case: mkfifo is not available");
+        }
+        // A directory and a missing directory: clear errors, nothing left behind.
+        let e = atomic_write_bytes(dir.path(), Durability::Atomic, b"x").unwrap_err();
+        assert!(e.to_string().contains("directory"), "{e}");
+        let e = atomic_write_bytes(&dir.path().join("no/such.txt"), Durability::Atomic, b"x")
+            .unwrap_err();
+        assert!(e.to_string().contains("does not exist"), "{e}");
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(
+            left.len(),
+            6 + usize::from(has_fifo),
+            "real, link, dangling, created, nowhere, loop (, pipe): {left:?}"
+        );
     }
 }
