@@ -49,8 +49,9 @@ Typical use:
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Fit a functional PS-spline surface z = s(x, y) to scattered data by Hermite
-    /// interpolation (Delaunay triangulation unless triangles are given).
+    /// Fit a functional PS-spline surface z = s(x, y) to scattered data: Hermite
+    /// interpolation (Delaunay triangulation unless triangles are given), or with
+    /// --approximate a smoothing least-squares fit on a coarser triangulation.
     Fit(commands::fit::FitArgs),
     /// Evaluate a surface (points, optionally first derivatives) at given parameters or on a
     /// grid, to CSV or .npy.

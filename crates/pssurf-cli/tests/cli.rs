@@ -524,6 +524,51 @@ fn fit_global_gradients_and_smoothing_fit_write_loadable_surfaces() {
         "-1",
     ]);
     fails(&["fit", &s(&data), "-o", &s(&out), "--smooth", "1"]);
+    // λ beyond what floating point can balance, and points that leave quadratics free:
+    // one line each, naming the cause, and no file.
+    let other = d.path().join("other.json");
+    let e = fails(&[
+        "fit",
+        &s(&data),
+        "-o",
+        &s(&other),
+        "--approximate",
+        "60",
+        "--smooth",
+        "1e300",
+    ]);
+    assert!(
+        e.contains("too large") && e.trim_end().lines().count() == 1,
+        "{e}"
+    );
+    let five = write(
+        d.path(),
+        "five.csv",
+        "x,y,z\n0,0,1\n1,0,2\n0,1,1\n1,1,3\n0.5,0.5,1\n",
+    );
+    let e = fails(&["fit", &s(&five), "-o", &s(&other), "--approximate", "5"]);
+    assert!(
+        e.contains("quadratics free") && e.trim_end().lines().count() == 1,
+        "{e}"
+    );
+    assert!(!other.exists());
+    // Gradient columns are not used by the smoothing fit: a warning says so.
+    let with_gradient = write(
+        d.path(),
+        "g.csv",
+        &csv.replace("x,y,z\n", "x,y,z,zx,zy\n")
+            .replace("\n", ",0,0\n")
+            .replacen("x,y,z,zx,zy,0,0", "x,y,z,zx,zy", 1),
+    );
+    let msg = ok_stderr(&[
+        "fit",
+        &s(&with_gradient),
+        "-o",
+        &s(&out),
+        "--approximate",
+        "60",
+    ]);
+    assert!(msg.contains("zx, zy are not used"), "{msg}");
 }
 
 /// Writing through a symbolic link updates the file it points to and keeps the link; a

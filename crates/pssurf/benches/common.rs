@@ -1,4 +1,5 @@
-//! Shared benchmark fixtures.
+//! Fixtures shared by the benchmarks and the integration tests (`tests/` include this file
+//! with `#[path]`).
 #![allow(dead_code)]
 
 use std::sync::Arc;
@@ -35,6 +36,26 @@ pub fn random_points(n: usize, seed: u64) -> Vec<Point2<f64>> {
         Point2::new(0.0, 1.0),
         Point2::new(1.0, 1.0),
     ];
+    while pts.len() < n {
+        pts.push(Point2::new(r.random::<f64>(), r.random::<f64>()));
+    }
+    pts
+}
+
+/// About n points of the unit square: its corners, √n random ones on each side (so that the
+/// boundary is sampled as densely as the inside) and uniform random ones inside.
+pub fn random_points_with_boundary(n: usize, seed: u64) -> Vec<Point2<f64>> {
+    let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut pts = random_points(4, seed);
+    for _ in 0..(n as f64).sqrt() as usize {
+        let t: f64 = r.random();
+        pts.extend([
+            Point2::new(t, 0.0),
+            Point2::new(1.0, t),
+            Point2::new(1.0 - t, 1.0),
+            Point2::new(0.0, 1.0 - t),
+        ]);
+    }
     while pts.len() < n {
         pts.push(Point2::new(r.random::<f64>(), r.random::<f64>()));
     }

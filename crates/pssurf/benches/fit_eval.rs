@@ -7,7 +7,11 @@ mod common;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use pssurf::prelude::*;
-use pssurf::scattered::{GradientMethod, interpolate};
+use pssurf::ps::Energy;
+use pssurf::scattered::{
+    GradientMethod, Smoothing, estimate_gradients, estimate_gradients_global, interpolate,
+    smooth_scattered,
+};
 use std::hint::black_box;
 
 fn fit_eval(c: &mut Criterion) {
@@ -31,9 +35,56 @@ fn fit_eval(c: &mut Criterion) {
     g.finish();
 }
 
+/// The gradient estimators and the global one's parts, and the smoothing fit, by size:
+/// `cargo bench -p pssurf --bench fit_eval -- fitting`.
+fn fitting(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fitting");
+    g.sample_size(10);
+    for n in [10_000, 100_000] {
+        let pts = common::random_points(n, 2004);
+        let z: Vec<f64> = pts.iter().map(|&p| common::franke(p).value).collect();
+        g.throughput(Throughput::Elements(n as u64));
+        let basis = interpolate(&pts, &z, GradientMethod::Local)
+            .unwrap()
+            .spline
+            .basis()
+            .clone();
+        let zv: Vec<f64> = {
+            let fit = interpolate(&pts, &z, GradientMethod::Local).unwrap();
+            fit.data_index.iter().map(|&k| z[k]).collect()
+        };
+        g.bench_function(format!("local gradients/{n}"), |b| {
+            b.iter(|| black_box(estimate_gradients(basis.triangulation(), &zv).unwrap()))
+        });
+        g.bench_function(format!("jump energy matrix/{n}"), |b| {
+            b.iter(|| black_box(basis.energy_matrix(Energy::HessianJumps)))
+        });
+        g.bench_function(format!("global gradients/{n}"), |b| {
+            b.iter(|| black_box(estimate_gradients_global(&basis, &zv).unwrap()))
+        });
+        let m = n / 20;
+        g.bench_function(format!("smoothing fit, fixed λ, {m} vertices/{n}"), |b| {
+            b.iter(|| {
+                black_box(
+                    smooth_scattered(
+                        &pts,
+                        &z,
+                        m,
+                        Energy::HessianJumps,
+                        Smoothing::Fixed(1e-6),
+                        &mut |_| {},
+                    )
+                    .unwrap(),
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
 fn fit(pts: &[nalgebra::Point2<f64>], z: &[f64]) -> PsSpline<f64> {
     interpolate(pts, z, GradientMethod::Local).unwrap().spline
 }
 
-criterion_group!(benches, fit_eval);
+criterion_group!(benches, fit_eval, fitting);
 criterion_main!(benches);

@@ -160,6 +160,23 @@ impl Block3Matrix {
         }
     }
 
+    /// Adds `other`, which has the same pattern (made by [`zeroed`](Self::zeroed)).
+    pub fn accumulate(&mut self, other: &Self) {
+        assert_eq!(self.cols, other.cols, "the same pattern");
+        use rayon::prelude::*;
+        self.blocks
+            .par_iter_mut()
+            .zip(&other.blocks)
+            .with_min_len(4096)
+            .for_each(|(a, b)| {
+                for r in 0..3 {
+                    for c in 0..3 {
+                        a[r][c] += b[r][c];
+                    }
+                }
+            });
+    }
+
     /// The number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.start.len() - 1
@@ -302,5 +319,67 @@ mod tests {
             pattern.factor(&neg).err(),
             Some(SparseError::NotPositiveDefinite)
         );
+    }
+
+    #[test]
+    fn block_matrices_multiply_and_flatten_like_their_dense_form() {
+        let mut r = rng(141);
+        let n = 12;
+        // Elements over random vertex sets, each a random symmetric matrix.
+        let elements: Vec<Vec<usize>> = (0..30)
+            .map(|_| {
+                let mut v: Vec<usize> = (0..4)
+                    .map(|_| (uniform(&mut r, 0.0, n as f64) as usize).min(n - 1))
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            })
+            .collect();
+        let mut m = Block3Matrix::with_pattern(n, |i, out| {
+            for e in &elements {
+                if e.contains(&i) {
+                    out.extend(e.iter().map(|&v| v as u32));
+                }
+            }
+        });
+        let mut dense = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
+        for e in &elements {
+            let k = 3 * e.len();
+            let mut local: ElementMatrix = [[0.0; 12]; 12];
+            for a in 0..k {
+                for b in 0..=a {
+                    let x = uniform(&mut r, -1.0, 1.0);
+                    local[a][b] = x;
+                    local[b][a] = x;
+                }
+            }
+            m.add_element(e, &local);
+            for a in 0..k {
+                for b in 0..k {
+                    dense[(3 * e[a / 3] + a % 3, 3 * e[b / 3] + b % 3)] += local[a][b];
+                }
+            }
+        }
+        let x: Vec<[f64; 3]> = (0..n)
+            .map(|_| std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0)))
+            .collect();
+        let xv = nalgebra::DVector::from_iterator(3 * n, x.iter().flatten().copied());
+        let y = m.multiply(&x);
+        let yd = &dense * &xv;
+        for i in 0..3 * n {
+            assert!((y[i / 3][i % 3] - yd[i]).abs() < 1e-13, "{i}");
+        }
+        assert!((m.quadratic_form(&x) - xv.dot(&yd)).abs() < 1e-12);
+        let (pos, val) = m.lower_entries();
+        let mut rebuilt = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
+        for (&(i, j), v) in pos.iter().zip(&val) {
+            assert!(i >= j);
+            rebuilt[(i, j)] += v;
+            if i != j {
+                rebuilt[(j, i)] += v;
+            }
+        }
+        assert!((rebuilt - dense).abs().max() < 1e-13);
     }
 }

@@ -6,38 +6,13 @@ use pssurf::scattered::{GradientMethod, interpolate};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+#[path = "../benches/common.rs"]
+mod common;
+
 const METHODS: [GradientMethod; 2] = [GradientMethod::Local, GradientMethod::Global];
 
 fn franke(x: f64, y: f64) -> f64 {
-    0.75 * (-((9.0 * x - 2.0).powi(2) + (9.0 * y - 2.0).powi(2)) / 4.0).exp()
-        + 0.75 * (-(9.0 * x + 1.0).powi(2) / 49.0 - (9.0 * y + 1.0) / 10.0).exp()
-        + 0.5 * (-((9.0 * x - 7.0).powi(2) + (9.0 * y - 3.0).powi(2)) / 4.0).exp()
-        - 0.2 * (-(9.0 * x - 4.0).powi(2) - (9.0 * y - 7.0).powi(2)).exp()
-}
-
-/// About n points in the unit square: √n random ones on each side (so that the boundary is
-/// sampled as densely as the inside), the corners, and uniform random ones inside.
-fn random_points(n: usize, seed: u64) -> Vec<Point2<f64>> {
-    let mut r = ChaCha8Rng::seed_from_u64(seed);
-    let mut pts = vec![
-        Point2::new(0.0, 0.0),
-        Point2::new(1.0, 0.0),
-        Point2::new(0.0, 1.0),
-        Point2::new(1.0, 1.0),
-    ];
-    for _ in 0..(n as f64).sqrt() as usize {
-        let t: f64 = r.random();
-        pts.extend([
-            Point2::new(t, 0.0),
-            Point2::new(1.0, t),
-            Point2::new(1.0 - t, 1.0),
-            Point2::new(0.0, 1.0 - t),
-        ]);
-    }
-    while pts.len() < n {
-        pts.push(Point2::new(r.random::<f64>(), r.random::<f64>()));
-    }
-    pts
+    common::franke(Point2::new(x, y)).value
 }
 
 /// A k × k grid whose interior points are moved by up to δ.
@@ -79,8 +54,14 @@ fn errors(pts: &[Point2<f64>], f: impl Fn(f64, f64) -> f64, method: GradientMeth
 fn every_gradient_method_reproduces_quadratics() {
     let mut r = ChaCha8Rng::seed_from_u64(120);
     let sets: Vec<(String, Vec<Point2<f64>>)> = vec![
-        ("random 300".into(), random_points(300, 1)),
-        ("random 40".into(), random_points(40, 2)),
+        (
+            "random 300".into(),
+            common::random_points_with_boundary(300, 1),
+        ),
+        (
+            "random 40".into(),
+            common::random_points_with_boundary(40, 2),
+        ),
         ("grid 12".into(), jittered_grid(12, 0.0, 3)),
         ("grid 12 δ=1e-9".into(), jittered_grid(12, 1e-9, 4)),
         ("grid 12 δ=1e-3".into(), jittered_grid(12, 1e-3, 5)),
@@ -105,7 +86,7 @@ fn both_estimators_are_of_order_three_on_franke() {
         let sizes = [1000, 4000, 16000];
         let errors: Vec<f64> = sizes
             .iter()
-            .map(|&n| errors(&random_points(n, 7), franke, method).1)
+            .map(|&n| errors(&common::random_points_with_boundary(n, 7), franke, method).1)
             .collect();
         // h ~ n^(-1/2): order p means error ~ n^(-p/2), a factor 4^(p/2) per step. The RMS
         // error at a grid is used: the maximum depends on one unlucky triangle.

@@ -8,22 +8,11 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
+#[path = "../benches/common.rs"]
+mod common;
+
 fn f(p: Point2<f64>) -> f64 {
     (3.0 * p.x).sin() * (2.0 * p.y).cos() + 0.5 * p.x * p.y
-}
-
-fn points(n: usize, seed: u64) -> Vec<Point2<f64>> {
-    let mut r = ChaCha8Rng::seed_from_u64(seed);
-    let mut pts = vec![
-        Point2::new(0.0, 0.0),
-        Point2::new(1.0, 0.0),
-        Point2::new(0.0, 1.0),
-        Point2::new(1.0, 1.0),
-    ];
-    while pts.len() < n {
-        pts.push(Point2::new(r.random(), r.random()));
-    }
-    pts
 }
 
 /// The RMS error to f at a 60 × 60 grid.
@@ -41,12 +30,12 @@ fn rms_to_truth(eval: impl Fn(Point2<f64>) -> f64) -> f64 {
 #[test]
 fn smoothing_beats_the_noise_and_the_interpolant_and_gcv_picks_a_good_lambda() {
     let sigma = 0.05;
-    let pts = points(2000, 1);
+    let pts = common::random_points(2000, 1);
     let mut r = ChaCha8Rng::seed_from_u64(2);
     let noise = Normal::new(0.0, sigma).unwrap();
     let z: Vec<f64> = pts.iter().map(|&p| f(p) + noise.sample(&mut r)).collect();
     for energy in [Energy::HessianJumps, Energy::ThinPlate] {
-        let fit = smooth_scattered(&pts, &z, 300, energy, Smoothing::Gcv).unwrap();
+        let fit = smooth_scattered(&pts, &z, 300, energy, Smoothing::Gcv, &mut |_| {}).unwrap();
         let err = rms_to_truth(|p| fit.spline.eval(p).unwrap());
         let interp = interpolate(&pts, &z, GradientMethod::Global)
             .unwrap()
@@ -56,7 +45,9 @@ fn smoothing_beats_the_noise_and_the_interpolant_and_gcv_picks_a_good_lambda() {
         let mut scan: Vec<(f64, f64)> = (-40..=16)
             .map(|k| {
                 let lambda = fit.lambda * 10f64.powf(k as f64 / 4.0);
-                let s = smooth_scattered(&pts, &z, 300, energy, Smoothing::Fixed(lambda)).unwrap();
+                let s =
+                    smooth_scattered(&pts, &z, 300, energy, Smoothing::Fixed(lambda), &mut |_| {})
+                        .unwrap();
                 (lambda, rms_to_truth(|p| s.spline.eval(p).unwrap()))
             })
             .collect();
@@ -103,6 +94,7 @@ fn with_lambda_to_zero_on_every_point_the_fit_is_the_interpolant() {
             pts.len(),
             Energy::HessianJumps,
             Smoothing::Fixed(lambda),
+            &mut |_| {},
         )
         .unwrap();
         let mut worst: f64 = 0.0;
@@ -134,11 +126,15 @@ fn with_lambda_to_zero_on_every_point_the_fit_is_the_interpolant() {
 fn vertices_without_data_are_fixed_by_the_energy() {
     // Data only in the left half and two far corners; the coarse triangulation has vertices
     // in the empty right half.
-    let mut pts: Vec<Point2<f64>> = points(800, 4).into_iter().filter(|p| p.x < 0.5).collect();
+    let mut pts: Vec<Point2<f64>> = common::random_points(800, 4)
+        .into_iter()
+        .filter(|p| p.x < 0.5)
+        .collect();
     pts.extend([Point2::new(1.0, 0.0), Point2::new(1.0, 1.0)]);
     let z: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
     for energy in [Energy::HessianJumps, Energy::ThinPlate] {
-        let fit = smooth_scattered(&pts, &z, 100, energy, Smoothing::Fixed(1e-6)).unwrap();
+        let fit =
+            smooth_scattered(&pts, &z, 100, energy, Smoothing::Fixed(1e-6), &mut |_| {}).unwrap();
         for p in [Point2::new(0.9, 0.5), Point2::new(0.7, 0.2)] {
             let v = fit.spline.eval(p).unwrap();
             assert!(v.is_finite() && v.abs() < 10.0, "{energy:?}: {v}");

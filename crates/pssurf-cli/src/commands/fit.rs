@@ -1,13 +1,15 @@
 //! `pssurf fit`: the Hermite PS-spline through scattered data.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::{Context, Result, bail};
 use nalgebra::{Point2, Vector2};
 use pssurf::prelude::*;
 use pssurf::ps::Energy;
-use pssurf::scattered::{GradientMethod, Smoothing, estimate, hermite_spline, smooth_scattered};
+use pssurf::scattered::{
+    GradientMethod, Smoothing, estimate_gradients_by, hermite_spline, smooth_scattered,
+};
 
 use crate::table::{Table, read_triangles};
 
@@ -34,8 +36,8 @@ impl From<Split> for SplitRule {
 pub enum Gradients {
     /// Local weighted quadratic least squares at each vertex (fastest).
     Local,
-    /// Least Hessian-jump energy over the whole triangulation (one sparse solve; more
-    /// accurate, above all near the boundary).
+    /// Least Hessian-jump energy over the whole triangulation (one sparse solve): more
+    /// accurate on smooth data, less on rough real data.
     Global,
 }
 
@@ -129,19 +131,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
         return approximate(args, m);
     }
     let table = Table::read(&args.data)?;
-    let col = |name: &str| table.column(name);
-    let (Some(x), Some(y), Some(z)) = (col("x"), col("y"), col("z")) else {
-        bail!(
-            "{}: needs columns x,y,z (found: {})",
-            args.data.display(),
-            table.headers.join(",")
-        );
-    };
-    let grads = match (col("zx"), col("zy")) {
-        (Some(a), Some(b)) => Some((a, b)),
-        (None, None) => None,
-        _ => bail!("{}: give both zx and zy, or neither", args.data.display()),
-    };
+    let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
     let mut points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
     let mut rows: Vec<&Vec<f64>> = table.rows.iter().collect();
     let mut row_of: Vec<usize> = (0..points.len()).collect();
@@ -186,13 +176,13 @@ pub fn run(args: &FitArgs) -> Result<()> {
         args.split.into(),
         &PsTriangleChoice::Optimal,
     )?);
-    let (gradients, method) = match grads {
+    let (gradients, method) = match gradient {
         Some((a, b)) => {
             let g: Vec<Vector2<f64>> = rows.iter().map(|r| Vector2::new(r[a], r[b])).collect();
             (g, "given in the data (zx, zy)".to_string())
         }
         None => {
-            let (g, report) = estimate(&basis, &values, args.gradients.into())?;
+            let (g, report) = estimate_gradients_by(&basis, &values, args.gradients.into())?;
             let mut m = match args.gradients {
                 Gradients::Local => "estimated by local weighted quadratic least squares",
                 Gradients::Global => "estimated by least Hessian-jump energy (global)",
@@ -207,7 +197,12 @@ pub fn run(args: &FitArgs) -> Result<()> {
             (g, m)
         }
     };
-    let spline = hermite_spline(basis.clone(), &values, &gradients)?;
+    let spline = hermite_spline(basis.clone(), &values, &gradients).with_context(|| {
+        format!(
+            "{}: the interpolant does not fit in floating point (values or gradients too large?)",
+            args.data.display()
+        )
+    })?;
     let t = basis.triangulation();
     pssurf::io::save(&Surface::from(spline), &args.output)?;
     eprintln!(
@@ -224,6 +219,34 @@ pub fn run(args: &FitArgs) -> Result<()> {
     Ok(())
 }
 
+/// The data columns `fit` uses: x, y, z and optionally the gradient (zx, zy).
+struct Columns {
+    x: usize,
+    y: usize,
+    z: usize,
+    gradient: Option<(usize, usize)>,
+}
+
+impl Columns {
+    /// Finds the columns by name, or says which are missing.
+    fn find(table: &Table, path: &Path) -> Result<Self> {
+        let col = |name: &str| table.column(name);
+        let (Some(x), Some(y), Some(z)) = (col("x"), col("y"), col("z")) else {
+            bail!(
+                "{}: needs columns x,y,z (found: {})",
+                path.display(),
+                table.headers.join(",")
+            );
+        };
+        let gradient = match (col("zx"), col("zy")) {
+            (Some(a), Some(b)) => Some((a, b)),
+            (None, None) => None,
+            _ => bail!("{}: give both zx and zy, or neither", path.display()),
+        };
+        Ok(Columns { x, y, z, gradient })
+    }
+}
+
 /// `pssurf fit --approximate M`: the smoothing fit.
 fn approximate(args: &FitArgs, m: usize) -> Result<()> {
     if args.triangles.is_some() {
@@ -235,32 +258,53 @@ fn approximate(args: &FitArgs, m: usize) -> Result<()> {
         bail!("--approximate {m}: needs at least 3 vertices");
     }
     let table = Table::read(&args.data)?;
-    let col = |name: &str| table.column(name);
-    let (Some(x), Some(y), Some(z)) = (col("x"), col("y"), col("z")) else {
-        bail!(
-            "{}: needs columns x,y,z (found: {})",
-            args.data.display(),
-            table.headers.join(",")
+    let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
+    if gradient.is_some() {
+        eprintln!(
+            "warning: {}: the columns zx, zy are not used by --approximate (it fits values only)",
+            args.data.display()
         );
-    };
+    }
     let points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
     let values: Vec<f64> = table.rows.iter().map(|r| r[z]).collect();
     let row_of: Vec<usize> = (0..points.len()).collect();
     warn_near_duplicates(&points, &row_of);
-    let fit =
-        smooth_scattered(&points, &values, m, args.energy.into(), args.smooth.0).map_err(|e| {
-            match e {
-                pssurf::scattered::SmoothingError::Triangulation(
-                    TriangulationError::DuplicateVertex { first, second },
-                ) => anyhow::anyhow!(
-                    "{}: rows {} and {} have the same (x, y); remove one",
-                    args.data.display(),
-                    first + 1,
-                    second + 1
-                ),
-                e => anyhow::anyhow!("{}: {e}", args.data.display()),
-            }
-        })?;
+    // GCV factorises the system for each λ it tries: show them as they come (indicatif
+    // draws only on a terminal).
+    let spinner = indicatif::ProgressBar::new_spinner().with_style(
+        indicatif::ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+            .expect("a valid template"),
+    );
+    let mut tried = 0;
+    let mut on_trial = |t: &pssurf::scattered::Trial| {
+        tried += 1;
+        spinner.set_message(format!(
+            "λ #{tried}: {:.2e} (GCV score {:.4e}, {:.1} degrees of freedom)",
+            t.lambda, t.gcv, t.dof
+        ));
+        spinner.tick();
+    };
+    let fit = smooth_scattered(
+        &points,
+        &values,
+        m,
+        args.energy.into(),
+        args.smooth.0,
+        &mut on_trial,
+    );
+    spinner.finish_and_clear();
+    let fit = fit.map_err(|e| match e {
+        pssurf::scattered::SmoothingError::Triangulation(TriangulationError::DuplicateVertex {
+            first,
+            second,
+        }) => anyhow::anyhow!(
+            "{}: rows {} and {} have the same (x, y); remove one",
+            args.data.display(),
+            first + 1,
+            second + 1
+        ),
+        e => anyhow::anyhow!("{}: {e}", args.data.display()),
+    })?;
     let t = fit.spline.basis().triangulation();
     let (vertices, triangles) = (t.vertex_count(), t.triangle_count());
     pssurf::io::save(&Surface::from(fit.spline), &args.output)?;

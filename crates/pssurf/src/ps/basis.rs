@@ -200,10 +200,15 @@ impl PsBasis {
     /// the tangent plane at V_i (Property 2.3) and c_ij sits above Q_ij, the solution of the
     /// 3 × 3 system (2.45) is c_ij = f + f_x (X_ij − x_i) + f_y (Y_ij − y_i).
     pub fn hermite_coefficients<V: Vector>(&self, i: usize, f: V, fx: V, fy: V) -> [V; 3] {
+        self.hermite_map(i)
+            .map(|[one, dx, dy]| f * one + fx * dx + fy * dy)
+    }
+
+    /// The matrix of [`hermite_coefficients`](Self::hermite_coefficients): row j is
+    /// (1, X_ij − x_i, Y_ij − y_i), so that c_ij = row_j · (f, f_x, f_y).
+    pub fn hermite_map(&self, i: usize) -> [[f64; 3]; 3] {
         let vi = self.tri.vertex(i);
-        self.ps_tris[i]
-            .v
-            .map(|q| f + fx * (q.x - vi.x) + fy * (q.y - vi.y))
+        self.ps_tris[i].v.map(|q| [1.0, q.x - vi.x, q.y - vi.y])
     }
 
     /// The conversion coefficients from control values to the 19 Bézier ordinates of

@@ -98,19 +98,35 @@ impl PsBasis {
                 }
             }
         });
-        const CHUNK: usize = 4096;
-        for first in (0..tri.triangle_count()).step_by(CHUNK) {
-            let last = (first + CHUNK).min(tri.triangle_count());
-            let elements: Vec<Vec<Element>> = (first..last)
-                .into_par_iter()
-                .map(|t| match energy {
-                    Energy::ThinPlate => vec![self.thin_plate_element(t)],
-                    Energy::HessianJumps => self.jump_elements(t),
-                })
-                .collect();
-            for e in elements.iter().flatten() {
-                q.add_element(&e.vertices[..e.len], &e.matrix);
-            }
+        // One range of vertices per thread, each adding the elements of the triangles whose
+        // smallest vertex it is into its own copy of the matrix (elements go straight from
+        // the stack into it); then the copies are summed. Visiting triangles by vertex keeps
+        // consecutive ones near each other in memory (triangles come in no useful order).
+        let nv = tri.vertex_count();
+        let threads = rayon::current_num_threads().clamp(1, nv.div_ceil(1024).max(1));
+        let per = nv.div_ceil(threads);
+        let parts: Vec<Block3Matrix> = (0..threads)
+            .into_par_iter()
+            .map(|k| {
+                let mut part = q.zeroed();
+                let mut add = |e: &Element| part.add_element(&e.vertices[..e.len], &e.matrix);
+                let owned = |i: usize| {
+                    tri.molecule(i)
+                        .iter()
+                        .map(|&t| t as usize)
+                        .filter(move |&t| tri.triangle(t).into_iter().min() == Some(i))
+                };
+                for t in (k * per..((k + 1) * per).min(nv)).flat_map(owned) {
+                    match energy {
+                        Energy::ThinPlate => add(&self.thin_plate_element(t)),
+                        Energy::HessianJumps => self.jump_elements(t, &mut add),
+                    }
+                }
+                part
+            })
+            .collect();
+        for part in &parts {
+            q.accumulate(part);
         }
         q
     }
@@ -126,10 +142,10 @@ impl PsBasis {
         e
     }
 
-    /// The Hessian jumps of triangle t: across its six inner edges (one element), and across
-    /// each edge of Δ it shares with a triangle of larger index (one element each, over
-    /// the four vertices of the two triangles).
-    fn jump_elements(&self, t: usize) -> Vec<Element> {
+    /// Passes to `add` the Hessian jumps of triangle t: across its six inner edges (one
+    /// element), and across each edge of Δ it shares with a triangle of larger index (one
+    /// element each, over the four vertices of the two triangles).
+    fn jump_elements(&self, t: usize, add: &mut impl FnMut(&Element)) {
         let tri = self.triangulation();
         let v = tri.triangle(t);
         let h = self.piece_hessians(t);
@@ -146,7 +162,7 @@ impl PsBasis {
                 inner.add_square(w * FROBENIUS[r], &jump);
             }
         }
-        let mut out = vec![inner];
+        add(&inner);
         for c in 0..3 {
             let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
                 continue;
@@ -154,9 +170,8 @@ impl PsBasis {
             if n < t {
                 continue;
             }
-            out.push(self.cross_edge_element(t, c, n, &h, &pieces));
+            add(&self.cross_edge_element(t, c, n, &h, &pieces));
         }
-        out
     }
 
     /// The jumps across PS edge c of triangle t (V_c → V_{c+1}) into its neighbour n: the

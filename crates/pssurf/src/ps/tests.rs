@@ -714,3 +714,34 @@ fn fast_paths_agree_with_the_full_jet() {
         }
     }
 }
+
+/// The stencil's transpose is its adjoint: Σ_m w_m (S c)_m = Σ_{c,j} (Sᵀ w)_{c,j} c_{c,j} for
+/// random weights and control values on every triangle of the catalogue.
+#[test]
+fn the_net_stencil_transpose_is_its_adjoint() {
+    let mut r = rng(140);
+    let mut checked = 0;
+    for (name, t) in catalogue(3) {
+        let b = PsBasis::optimal(t).unwrap();
+        for tri in 0..b.triangulation().triangle_count() {
+            let st = b.stencil(tri);
+            let ctrl: [[f64; 3]; 3] =
+                std::array::from_fn(|_| std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0)));
+            let w: [f64; NET_LEN] = std::array::from_fn(|_| uniform(&mut r, -1.0, 1.0));
+            let net = st.apply(ctrl);
+            let lhs: f64 = w.iter().zip(&net).map(|(a, b)| a * b).sum();
+            let k = st.transpose(w);
+            let rhs: f64 = (0..3)
+                .flat_map(|c| (0..3).map(move |j| (c, j)))
+                .map(|(c, j)| k[c][j] * ctrl[c][j])
+                .sum();
+            let size: f64 = w.iter().zip(&net).map(|(a, b)| (a * b).abs()).sum();
+            assert!(
+                (lhs - rhs).abs() <= 1e-14 * size.max(1.0),
+                "{name}, triangle {tri}: {lhs} vs {rhs}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 100, "{checked}");
+}

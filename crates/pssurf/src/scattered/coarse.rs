@@ -63,3 +63,45 @@ fn grid_sample(points: &[Point2<f64>], lo: Point2<f64>, cell: f64) -> Vec<usize>
     }
     best.into_values().map(|(_, k)| k).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_util::*;
+
+    #[test]
+    fn coarse_vertices_keep_the_hull_and_come_near_the_requested_count() {
+        let mut r = rng(142);
+        for (n, m) in [(5000, 500), (20000, 300), (3000, 2900), (100, 1000)] {
+            // Points in a disc (a hull with many corners) and a dense cluster.
+            let pts: Vec<Point2<f64>> = (0..n)
+                .map(|k| {
+                    let (a, rad) = (
+                        uniform(&mut r, 0.0, std::f64::consts::TAU),
+                        uniform(&mut r, 0.0, 1.0).sqrt(),
+                    );
+                    let s = if k % 5 == 0 { 0.05 } else { 1.0 };
+                    Point2::new(5.0 + s * rad * a.cos(), -3.0 + s * rad * a.sin())
+                })
+                .collect();
+            let chosen = coarse_vertices(&pts, m);
+            assert!(
+                chosen.windows(2).all(|w| w[0] < w[1]),
+                "increasing, distinct"
+            );
+            let hull = convex_hull(&pts);
+            for h in &hull {
+                assert!(chosen.iter().any(|&k| pts[k] == *h), "hull corner {h} kept");
+            }
+            if m >= n {
+                assert_eq!(chosen.len(), n);
+            } else {
+                let got = chosen.len() as f64;
+                assert!(
+                    got > 0.5 * m as f64 && got < 1.5 * m as f64 + hull.len() as f64,
+                    "n {n}, m {m}: {got}"
+                );
+            }
+        }
+    }
+}

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use nalgebra::{Point2, Vector2};
 
-use super::global::{GlobalGradientError, estimate_gradients_global};
+use super::global::{GlobalGradientError, anchored_global_gradients};
 use super::local::{GradientError, GradientFit, estimate_gradients};
 use crate::ps::{Hermite, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule};
 use crate::triangulation::{Triangulation, TriangulationError, duplicate_points, morton_order};
@@ -20,7 +20,7 @@ pub enum GradientMethod {
     Local,
     /// The minimum Hessian-jump energy over the whole triangulation
     /// ([`estimate_gradients_global`](super::estimate_gradients_global)): one sparse solve;
-    /// 1.2–1.6× more accurate on smooth functions, less on rough data.
+    /// 1.1–1.9× lower RMS error on Franke's function, higher on rough real data.
     Global,
 }
 
@@ -63,8 +63,9 @@ pub struct GradientReport {
     pub planar: usize,
 }
 
-/// The gradients at the vertices of `basis`'s triangulation from the values there.
-pub fn estimate(
+/// The gradients at the vertices of `basis`'s triangulation from the values there, by
+/// `method`, with what the local fits needed.
+pub fn estimate_gradients_by(
     basis: &PsBasis,
     values: &[f64],
     method: GradientMethod,
@@ -81,9 +82,10 @@ pub fn estimate(
             .filter(|(_, k)| *k == GradientFit::Linear)
             .count(),
     };
+    let local: Vec<Vector2<f64>> = local.into_iter().map(|(g, _)| g).collect();
     let gradients = match method {
-        GradientMethod::Local => local.into_iter().map(|(g, _)| g).collect(),
-        GradientMethod::Global => estimate_gradients_global(basis, values)?,
+        GradientMethod::Local => local,
+        GradientMethod::Global => anchored_global_gradients(basis, values, &local)?,
     };
     Ok((gradients, report))
 }
@@ -146,7 +148,7 @@ pub fn interpolate(
         SplitRule::Incenter,
         &PsTriangleChoice::Optimal,
     )?);
-    let (g, gradients) = estimate(&basis, &z, method)?;
+    let (g, gradients) = estimate_gradients_by(&basis, &z, method)?;
     Ok(Interpolant {
         spline: hermite_spline(basis, &z, &g)?,
         data_index,

@@ -12,9 +12,12 @@ pub use coarse::coarse_vertices;
 pub use diagnostics::{NearDuplicate, near_duplicates, slivers};
 pub use global::{ANCHOR, GlobalGradientError, estimate_gradients_global};
 pub use interpolate::{
-    FitError, GradientMethod, GradientReport, Interpolant, estimate, hermite_spline, interpolate,
+    FitError, GradientMethod, GradientReport, Interpolant, estimate_gradients_by, hermite_spline,
+    interpolate,
 };
 pub use local::{
     GradientError, GradientFit, MAX_CONDITION, MAX_USABLE_CONDITION, estimate_gradients,
 };
-pub use smoothing::{Smoothing, SmoothingError, SmoothingFit, smooth_scattered, smoothing_fit};
+pub use smoothing::{
+    Smoothing, SmoothingError, SmoothingFit, Trial, smooth_scattered, smoothing_fit,
+};

@@ -66,9 +66,14 @@ pub enum SmoothingError {
     /// A value or λ is not finite, or λ < 0.
     #[error("{0}")]
     Invalid(String),
-    /// The normal equations are singular (too few data for the energy's null space).
+    /// The points cannot fix what the energy leaves free (planes or quadratics).
     #[error(
-        "the data do not determine the fit (too few points, or all on a line or conic); give more points or a larger λ"
+        "the points do not determine the fit: this energy leaves {0} free, and the points cannot fix them (they need {1})"
+    )]
+    Undetermined(&'static str, &'static str),
+    /// The normal equations are singular in floating point.
+    #[error(
+        "the fit is not determined: too few points for the vertices near them; give fewer vertices (--approximate) or a larger λ"
     )]
     Singular,
     /// The sparse solver failed otherwise.
@@ -91,32 +96,83 @@ impl From<SparseError> for SmoothingError {
     }
 }
 
+/// λ beyond this multiple of the balancing scale (tr BᵀB / tr Q) is "too large" when the
+/// system cannot be factorised.
+const TOO_LARGE: f64 = 1e8;
+
+/// Whether the data determine the null space of `energy` (planes for the thin-plate
+/// energy, quadratics for the Hessian-jump energy): then BᵀB + λQ is positive definite for
+/// every λ > 0. Checked on the Gram matrix of the monomials in centred, scaled coordinates:
+/// its smallest eigenvalue must exceed 1e-13 of its largest (points on one line, or for
+/// quadratics on one conic or fewer than six, fail).
+fn determines_null_space(points: &[Point2<f64>], energy: Energy) -> bool {
+    let k = match energy {
+        Energy::ThinPlate => 3,
+        Energy::HessianJumps => 6,
+    };
+    if points.len() < k {
+        return false;
+    }
+    let n = points.len() as f64;
+    let centre = points
+        .iter()
+        .fold(nalgebra::Vector2::zeros(), |a, p| a + p.coords)
+        / n;
+    let radius = points
+        .iter()
+        .map(|p| (p.coords - centre).norm())
+        .fold(0.0, f64::max);
+    if !(radius > 0.0 && radius.is_finite()) {
+        return false;
+    }
+    let mut gram = nalgebra::DMatrix::<f64>::zeros(k, k);
+    for p in points {
+        let (u, v) = ((p.x - centre.x) / radius, (p.y - centre.y) / radius);
+        let m = [1.0, u, v, u * u, u * v, v * v];
+        for a in 0..k {
+            for b in 0..k {
+                gram[(a, b)] += m[a] * m[b];
+            }
+        }
+    }
+    let eig = gram.symmetric_eigenvalues();
+    eig.min() > 1e-13 * eig.max()
+}
+
 /// Bases with at most this many control values get the exact trace of A(λ).
 const EXACT_TRACE_MAX: usize = 1500;
-/// The number of Hutchinson probes otherwise.
+/// The number of Hutchinson probes otherwise (relative error of the estimate about
+/// √(2/PROBES) × ‖A‖_F / tr A).
 const PROBES: usize = 32;
+/// The fewest probes, for bases too large for [`PROBES`] within [`PROBE_MEMORY`].
+const MIN_PROBES: usize = 4;
+/// The memory the probe vectors may take (bytes).
+const PROBE_MEMORY: usize = 256 << 20;
+/// Right-hand sides solved at once.
+const SOLVE_BATCH: usize = 8;
+
+/// One λ tried by the smoothing fit, for progress reports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trial {
+    /// The smoothing parameter.
+    pub lambda: f64,
+    /// Its GCV score.
+    pub gcv: f64,
+    /// Its effective degrees of freedom.
+    pub dof: f64,
+}
 
 /// The smoothing PS-spline on `basis` of the data (points[k], values[k]) with energy
-/// `energy` and smoothing `smoothing` (module docs).
+/// `energy` and smoothing `smoothing` (module docs); `on_trial` hears of every λ tried.
 pub fn smoothing_fit(
     basis: Arc<PsBasis>,
     points: &[Point2<f64>],
     values: &[f64],
     energy: Energy,
     smoothing: Smoothing,
+    on_trial: &mut dyn FnMut(&Trial),
 ) -> Result<SmoothingFit, SmoothingError> {
-    if points.len() != values.len() {
-        return Err(SmoothingError::Invalid(format!(
-            "{} points but {} values",
-            points.len(),
-            values.len()
-        )));
-    }
-    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-        return Err(SmoothingError::Invalid(format!(
-            "the value of point {k} is not finite"
-        )));
-    }
+    check_input(points, values, energy, smoothing)?;
     let rows = DesignRows::new(&basis, points)?;
     let q = basis.energy_matrix(energy);
     let mut btb = q.zeroed();
@@ -124,13 +180,14 @@ pub fn smoothing_fit(
     rows.normal_equations(values, &mut btb, &mut btz);
     let system = NormalSystem::new(&btb, &q, btz)?;
     let probes = TraceProbes::new(&rows, &btb);
-    let evaluate = |lambda: f64| -> Result<Candidate, SmoothingError> {
+    let mut evaluate = |lambda: f64| -> Result<Candidate, SmoothingError> {
         let factor = system.factor(lambda)?;
         let c = factor.solve(&system.rhs);
         let rss = rows.residual_sum_of_squares(values, &c);
         let dof = probes.trace(&factor);
         let n = points.len() as f64;
         let gcv = n * rss / (n - dof).max(f64::MIN_POSITIVE).powi(2);
+        on_trial(&Trial { lambda, gcv, dof });
         Ok(Candidate {
             lambda,
             coeffs: c,
@@ -139,16 +196,20 @@ pub fn smoothing_fit(
             gcv,
         })
     };
+    let scale = system.lambda_scale();
     let best = match smoothing {
-        Smoothing::Fixed(lambda) => {
-            if !(lambda >= 0.0 && lambda.is_finite()) {
+        Smoothing::Fixed(lambda) => match evaluate(lambda) {
+            // The data determine the energy's null space (checked above), so the system is
+            // positive definite for λ > 0 — unless λ is so large that the data's part is
+            // lost to rounding next to λQ.
+            Err(SmoothingError::Singular) if lambda > TOO_LARGE * scale => {
                 return Err(SmoothingError::Invalid(format!(
-                    "λ must be finite and ≥ 0, not {lambda}"
+                    "λ = {lambda:e} is too large for these data: the energy swamps them in floating point (λ ≈ {scale:.1e} weighs both alike)"
                 )));
             }
-            evaluate(lambda)?
-        }
-        Smoothing::Gcv => gcv_search(system.lambda_scale(), evaluate)?,
+            result => result?,
+        },
+        Smoothing::Gcv => gcv_search(scale, evaluate)?,
     };
     let coeffs: Vec<[f64; 3]> = best.coeffs.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
     Ok(SmoothingFit {
@@ -161,6 +222,52 @@ pub fn smoothing_fit(
     })
 }
 
+/// Refuses data and parameters the fit cannot use, with the reason.
+fn check_input(
+    points: &[Point2<f64>],
+    values: &[f64],
+    energy: Energy,
+    smoothing: Smoothing,
+) -> Result<(), SmoothingError> {
+    if points.len() != values.len() {
+        return Err(SmoothingError::Invalid(format!(
+            "{} points but {} values",
+            points.len(),
+            values.len()
+        )));
+    }
+    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+        return Err(SmoothingError::Invalid(format!(
+            "the value of point {k} is not finite"
+        )));
+    }
+    if let Some(k) = points
+        .iter()
+        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
+    {
+        return Err(SmoothingError::Invalid(format!(
+            "point {k} has a coordinate that is not finite"
+        )));
+    }
+    if let Smoothing::Fixed(lambda) = smoothing
+        && !(lambda >= 0.0 && lambda.is_finite())
+    {
+        return Err(SmoothingError::Invalid(format!(
+            "λ must be finite and ≥ 0, not {lambda}"
+        )));
+    }
+    if !determines_null_space(points, energy) {
+        return Err(match energy {
+            Energy::ThinPlate => SmoothingError::Undetermined("planes", "3 points not on one line"),
+            Energy::HessianJumps => SmoothingError::Undetermined(
+                "quadratics",
+                "6 points not on one line, circle or other conic",
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// The smoothing fit of scattered data on the Delaunay triangulation of about `m` of the
 /// data points ([`coarse_vertices`](super::coarse_vertices)), with the incentre split and
 /// optimal PS-triangles. With m ≥ N every point is a vertex.
@@ -170,6 +277,7 @@ pub fn smooth_scattered(
     m: usize,
     energy: Energy,
     smoothing: Smoothing,
+    on_trial: &mut dyn FnMut(&Trial),
 ) -> Result<SmoothingFit, SmoothingError> {
     if let Some((first, second)) = crate::triangulation::duplicate_points(points) {
         return Err(
@@ -186,7 +294,7 @@ pub fn smooth_scattered(
         crate::ps::SplitRule::Incenter,
         &crate::ps::PsTriangleChoice::Optimal,
     )?);
-    smoothing_fit(basis, points, values, energy, smoothing)
+    smoothing_fit(basis, points, values, energy, smoothing, on_trial)
 }
 
 /// One λ tried.
@@ -203,16 +311,25 @@ struct Candidate {
 /// best.
 fn gcv_search(
     scale: f64,
-    evaluate: impl Fn(f64) -> Result<Candidate, SmoothingError>,
+    mut evaluate: impl FnMut(f64) -> Result<Candidate, SmoothingError>,
 ) -> Result<Candidate, SmoothingError> {
     let mut tried: Vec<Candidate> = Vec::new();
-    let try_at = |k: f64, tried: &mut Vec<Candidate>| -> Result<(), SmoothingError> {
-        tried.push(evaluate(scale * 10f64.powf(k))?);
+    // A λ so large (or small) that the system cannot be factorised in floating point is
+    // skipped; the data determine the problem, so moderate λ always work.
+    let mut try_at = |k: f64, tried: &mut Vec<Candidate>| -> Result<(), SmoothingError> {
+        match evaluate(scale * 10f64.powf(k)) {
+            Ok(c) => tried.push(c),
+            Err(SmoothingError::Singular) => {}
+            Err(e) => return Err(e),
+        }
         Ok(())
     };
     let (mut lo, mut hi) = (-8, 8);
     for k in lo..=hi {
         try_at(k as f64, &mut tried)?;
+    }
+    if tried.is_empty() {
+        return Err(SmoothingError::Singular);
     }
     let best_k = |tried: &[Candidate]| -> f64 {
         let b = tried.iter().min_by(|a, b| a.gcv.total_cmp(&b.gcv)).unwrap();
@@ -408,29 +525,43 @@ struct TraceProbes {
 }
 
 impl TraceProbes {
+    /// Exact for bases of at most [`EXACT_TRACE_MAX`] values, Hutchinson's otherwise.
     fn new(rows: &DesignRows, btb: &Block3Matrix) -> Self {
+        if 3 * btb.vertex_count() <= EXACT_TRACE_MAX {
+            Self::exact(btb)
+        } else {
+            Self::hutchinson(rows, 3 * btb.vertex_count())
+        }
+    }
+
+    /// The columns of BᵀB, for the exact trace.
+    fn exact(btb: &Block3Matrix) -> Self {
         let n = 3 * btb.vertex_count();
-        if n <= EXACT_TRACE_MAX {
-            let mut columns = vec![0.0; n * n];
-            for (i, j, b) in btb.blocks() {
-                for r in 0..3 {
-                    for c in 0..3 {
-                        let (a, bb) = (3 * i + r, 3 * j + c);
-                        columns[bb * n + a] = b[r][c];
-                        columns[a * n + bb] = b[r][c];
-                    }
+        let mut columns = vec![0.0; n * n];
+        for (i, j, b) in btb.blocks() {
+            for r in 0..3 {
+                for c in 0..3 {
+                    let (a, bb) = (3 * i + r, 3 * j + c);
+                    columns[bb * n + a] = b[r][c];
+                    columns[a * n + bb] = b[r][c];
                 }
             }
-            return TraceProbes {
-                columns,
-                count: n,
-                exact: true,
-            };
         }
+        TraceProbes {
+            columns,
+            count: n,
+            exact: true,
+        }
+    }
+
+    /// Bᵀu for random ±1 vectors u (a fixed seed: results are reproducible).
+    fn hutchinson(rows: &DesignRows, n: usize) -> Self {
         use rand::{RngExt, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x5eed);
-        let mut columns = vec![0.0; n * PROBES];
-        for k in 0..PROBES {
+        // Fewer probes for very large bases, so that they fit in PROBE_MEMORY.
+        let count = (PROBE_MEMORY / (8 * n)).clamp(MIN_PROBES, PROBES);
+        let mut columns = vec![0.0; n * count];
+        for k in 0..count {
             let col = &mut columns[k * n..(k + 1) * n];
             for row in &rows.rows {
                 let u = if rng.random::<bool>() { 1.0 } else { -1.0 };
@@ -439,7 +570,7 @@ impl TraceProbes {
         }
         TraceProbes {
             columns,
-            count: PROBES,
+            count,
             exact: false,
         }
     }
@@ -449,18 +580,30 @@ impl TraceProbes {
     }
 
     /// tr A(λ) with the factorisation of BᵀB + λQ.
+    /// Solves for the probe columns in batches of [`SOLVE_BATCH`] (bounded memory).
     fn trace(&self, factor: &crate::sparse::Cholesky) -> f64 {
         let n = self.columns.len() / self.count;
-        let x = factor.solve_many(&self.columns, self.count);
+        let mut total = 0.0;
+        for first in (0..self.count).step_by(SOLVE_BATCH) {
+            let last = (first + SOLVE_BATCH).min(self.count);
+            let b = &self.columns[first * n..last * n];
+            let x = factor.solve_many(b, last - first);
+            for (k, col) in (first..last).enumerate() {
+                let y = &x[k * n..(k + 1) * n];
+                total += if self.exact {
+                    y[col]
+                } else {
+                    b[k * n..(k + 1) * n]
+                        .iter()
+                        .zip(y)
+                        .map(|(a, c)| a * c)
+                        .sum::<f64>()
+                };
+            }
+        }
         if self.exact {
-            (0..n).map(|j| x[j * n + j]).sum()
+            total
         } else {
-            let total: f64 = (0..self.count)
-                .map(|k| {
-                    let (b, y) = (&self.columns[k * n..(k + 1) * n], &x[k * n..(k + 1) * n]);
-                    b.iter().zip(y).map(|(a, c)| a * c).sum::<f64>()
-                })
-                .sum();
             total / self.count as f64
         }
     }
@@ -476,4 +619,136 @@ fn value_weights(loc: &SubLocation) -> [f64; NET_LEN] {
         w[k] += bern[slot];
     }
     w
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_util::*;
+
+    /// A smoothing problem on `n` random points of the unit square (corners included), on the
+    /// Delaunay triangulation of `m` of them.
+    fn problem(n: usize, m: usize, seed: u64) -> (Arc<PsBasis>, Vec<Point2<f64>>, Vec<f64>) {
+        let mut r = rng(seed);
+        let mut pts = vec![
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 0.0),
+            Point2::new(0.0, 1.0),
+            Point2::new(1.0, 1.0),
+        ];
+        while pts.len() < n {
+            pts.push(Point2::new(
+                uniform(&mut r, 0.0, 1.0),
+                uniform(&mut r, 0.0, 1.0),
+            ));
+        }
+        let z: Vec<f64> = pts
+            .iter()
+            .map(|p| (4.0 * p.x).sin() + p.y * p.y + uniform(&mut r, -0.1, 0.1))
+            .collect();
+        let chosen = super::super::coarse_vertices(&pts, m);
+        let tri =
+            crate::triangulation::Triangulation::delaunay(chosen.iter().map(|&k| pts[k]).collect())
+                .unwrap();
+        (Arc::new(PsBasis::optimal(tri).unwrap()), pts, z)
+    }
+
+    #[test]
+    fn hutchinson_estimates_the_exact_trace() {
+        let (basis, pts, z) = problem(600, 80, 91);
+        let rows = DesignRows::new(&basis, &pts).unwrap();
+        let q = basis.energy_matrix(Energy::HessianJumps);
+        let mut btb = q.zeroed();
+        let mut btz = vec![0.0; 3 * q.vertex_count()];
+        rows.normal_equations(&z, &mut btb, &mut btz);
+        let system = NormalSystem::new(&btb, &q, btz).unwrap();
+        let exact = TraceProbes::exact(&btb);
+        let estimate = TraceProbes::hutchinson(&rows, 3 * q.vertex_count());
+        for k in [-4.0, -2.0, 0.0, 2.0] {
+            let f = system
+                .factor(system.lambda_scale() * 10f64.powf(k))
+                .unwrap();
+            let (t, e) = (exact.trace(&f), estimate.trace(&f));
+            // tr A ≤ rank and A's eigenvalues lie in [0, 1], so ‖A‖_F ≤ √tr A and the
+            // estimate's standard deviation is at most √(2 tr A / 32).
+            let sd = (2.0 * t / PROBES as f64).sqrt();
+            assert!(
+                (t - e).abs() <= 4.0 * sd,
+                "λ·10^{k}: exact {t}, estimate {e} (sd {sd})"
+            );
+            assert!(t > 6.0 && t < 3.0 * q.vertex_count() as f64, "{t}");
+        }
+    }
+
+    #[test]
+    fn the_normal_equations_and_the_exact_trace_match_dense_algebra() {
+        let (basis, pts, z) = problem(60, 12, 92);
+        let rows = DesignRows::new(&basis, &pts).unwrap();
+        let q = basis.energy_matrix(Energy::ThinPlate);
+        let mut btb = q.zeroed();
+        let mut btz = vec![0.0; 3 * q.vertex_count()];
+        rows.normal_equations(&z, &mut btb, &mut btz);
+        let system = NormalSystem::new(&btb, &q, btz).unwrap();
+        let lambda = system.lambda_scale() * 0.1;
+        // Dense B and Q from unit control vectors.
+        let n = 3 * q.vertex_count();
+        let unit = |j: usize| -> Vec<f64> { (0..n).map(|i| f64::from(u8::from(i == j))).collect() };
+        let b = nalgebra::DMatrix::from_fn(pts.len(), n, |_, _| 0.0);
+        let mut b = b;
+        for j in 0..n {
+            let e = unit(j);
+            for (row, &k) in rows.rows.iter().zip(&rows.point) {
+                b[(k, j)] = row.dot(&e);
+            }
+        }
+        let qd = nalgebra::DMatrix::from_fn(n, n, |i, j| {
+            let x: Vec<[f64; 3]> = unit(j).chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+            let y = q.multiply(&x);
+            y[i / 3][i % 3]
+        });
+        let m = b.transpose() * &b + qd * lambda;
+        let hat = &b * m.clone().try_inverse().unwrap() * b.transpose();
+        let factor = system.factor(lambda).unwrap();
+        let t = TraceProbes::exact(&btb).trace(&factor);
+        assert!(
+            (t - hat.trace()).abs() <= 1e-8 * hat.trace(),
+            "{t} vs {}",
+            hat.trace()
+        );
+        // The sparse normal equations against the dense ones.
+        let zv = nalgebra::DVector::from_column_slice(&z);
+        let dense = m.try_inverse().unwrap() * b.transpose() * zv;
+        let sparse = factor.solve(&system.rhs);
+        for (a, d) in sparse.iter().zip(dense.iter()) {
+            assert!((a - d).abs() <= 1e-8 * (1.0 + d.abs()), "{a} vs {d}");
+        }
+    }
+
+    #[test]
+    fn data_that_do_not_determine_the_null_space_are_refused() {
+        let p = Point2::new;
+        let five = [
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(0.0, 1.0),
+            p(1.0, 1.0),
+            p(0.5, 0.3),
+        ];
+        assert!(!determines_null_space(&five, Energy::HessianJumps));
+        assert!(determines_null_space(&five, Energy::ThinPlate));
+        // Twelve points on a circle: on one conic.
+        let circle: Vec<_> = (0..12)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 12.0;
+                p(3.0 + a.cos(), -2.0 + a.sin())
+            })
+            .collect();
+        assert!(!determines_null_space(&circle, Energy::HessianJumps));
+        assert!(determines_null_space(&circle, Energy::ThinPlate));
+        let mut with_centre = circle.clone();
+        with_centre.push(p(3.0, -2.0));
+        assert!(determines_null_space(&with_centre, Energy::HessianJumps));
+        let line: Vec<_> = (0..10).map(|k| p(k as f64, 2.0 * k as f64 + 1.0)).collect();
+        assert!(!determines_null_space(&line, Energy::ThinPlate));
+    }
 }
