@@ -603,6 +603,33 @@ fn outputs_never_replace_links_or_directories() {
     );
 }
 
+/// A reader that stops early (`pssurf eval … | head -1`) is not an error: no panic, no
+/// message, success.
+#[test]
+fn a_closed_standard_output_ends_quietly() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    let d = tmp();
+    let surf = d.path().join("f.json");
+    ok(&["fit", &example("franke.csv"), "-o", &s(&surf)]);
+    for args in [
+        vec!["eval", &s(&surf), "--grid", "700x700"],
+        vec!["info", &s(&surf)],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_pssurf"))
+            .args(&args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut first = [0u8; 1];
+        child.stdout.take().unwrap().read_exact(&mut first).unwrap();
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success() && err.is_empty(), "{args:?}: {err}");
+    }
+}
+
 /// Runs pssurf, which must succeed, and returns what it printed on standard error.
 fn ok_stderr(args: &[&str]) -> String {
     let out = pssurf(args);

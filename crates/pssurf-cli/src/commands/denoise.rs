@@ -117,10 +117,10 @@ pub fn run(args: &DenoiseArgs) -> Result<()> {
     };
     let names = u.coordinate_names();
     let (out, stats) = u.denoise(args.levels, |level, _| rules[level], mode)?;
-    println!("{}", stats_table(&stats, names, true));
+    outln!("{}", stats_table(&stats, names, true))?;
     let removed: usize = stats.iter().map(|s| s.zeroed).sum();
     let total: usize = stats.iter().map(|s| s.count).sum();
-    println!(
+    outln!(
         "rule: {} thresholding, {}; {removed} of {total} coefficients ({:.2}%) set to zero",
         match args.mode {
             Mode::Hard => "hard",
@@ -139,7 +139,7 @@ pub fn run(args: &DenoiseArgs) -> Result<()> {
             )
         },
         100.0 * removed as f64 / total.max(1) as f64
-    );
+    )?;
     pssurf::io::save(&Surface::from(out), &args.output)?;
     eprintln!("wrote {}", args.output.display());
     Ok(())

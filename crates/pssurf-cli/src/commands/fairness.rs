@@ -28,9 +28,9 @@ pub fn run(args: &FairnessArgs) -> Result<()> {
     let surface = pssurf::io::load(&args.surface)?;
     let f = fairness(&surface, args.degree);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&f)?);
+        outln!("{}", serde_json::to_string_pretty(&f)?)?;
     } else {
-        print!("{}", table(&f));
+        out!("{}", table(&f))?;
     }
     Ok(())
 }

@@ -85,9 +85,9 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     let s = pssurf::io::load(&args.surface)?;
     let info = collect(&s, args.surface.display().to_string());
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&info)?);
+        outln!("{}", serde_json::to_string_pretty(&info)?)?;
     } else {
-        print_table(&info);
+        print_table(&info)?;
     }
     Ok(())
 }
@@ -158,29 +158,33 @@ fn uniform_info(u: &UpsSurface) -> UniformInfo {
     }
 }
 
-fn print_table(info: &Info) {
+fn print_table(info: &Info) -> Result<()> {
     let st = |s: &Stats| format!("min {:.4}, median {:.4}, max {:.4}", s.min, s.median, s.max);
-    println!("file                 {}", info.file);
-    println!("status               valid (every check passed on loading)");
-    println!("kind                 {} ({})", info.kind, info.description);
+    outln!("file                 {}", info.file)?;
+    outln!("status               valid (every check passed on loading)")?;
+    outln!("kind                 {} ({})", info.kind, info.description)?;
     if let Some(ps) = &info.ps {
-        println!(
+        outln!(
             "vertices             {} ({} on the boundary)",
-            ps.vertices, ps.boundary_vertices
-        );
-        println!(
+            ps.vertices,
+            ps.boundary_vertices
+        )?;
+        outln!(
             "triangles            {} ({} edges; {} PS sub-triangles)",
-            ps.triangles, ps.edges, info.pieces
-        );
-        println!("basis functions      {}", ps.basis_functions);
-        println!("split points         {}", ps.split);
+            ps.triangles,
+            ps.edges,
+            info.pieces
+        )?;
+        outln!("basis functions      {}", ps.basis_functions)?;
+        outln!("split points         {}", ps.split)?;
     }
-    println!(
+    outln!(
         "pieces               {} of degree {}",
-        info.pieces, info.degree
-    );
+        info.pieces,
+        info.degree
+    )?;
     let (dlo, dhi) = (info.domain_min, info.domain_max);
-    println!(
+    outln!(
         "domain               [{}, {}] × [{}, {}], area {}{}",
         dlo[0],
         dhi[0],
@@ -192,25 +196,31 @@ fn print_table(info: &Info) {
             1 => ", 1 hole".into(),
             h => format!(", {h} holes"),
         }
-    );
+    )?;
     if let Some(ps) = &info.ps {
-        println!("molecule numbers     {}", st(&ps.molecule_number));
-        println!(
+        outln!("molecule numbers     {}", st(&ps.molecule_number))?;
+        outln!(
             "PS-triangle quality  area / hull of PS-points: {}",
             st(&ps.ps_triangle_area_ratio)
-        );
-        println!(
+        )?;
+        outln!(
             "                     smallest angle (degrees): {}",
             st(&ps.ps_triangle_min_angle_deg)
-        );
+        )?;
     }
     let (lo, hi) = (info.control_min, info.control_max);
-    println!(
+    outln!(
         "control points       {}: x [{}, {}], y [{}, {}], z [{}, {}]",
-        info.control_points, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
-    );
+        info.control_points,
+        lo[0],
+        hi[0],
+        lo[1],
+        hi[1],
+        lo[2],
+        hi[2]
+    )?;
     if let Some(w) = &info.weights {
-        println!("weights              {}", st(w));
+        outln!("weights              {}", st(w))?;
     }
     if let Some(u) = &info.uniform {
         let corners: Vec<String> = u
@@ -218,16 +228,17 @@ fn print_table(info: &Info) {
             .iter()
             .map(|p| format!("{},{}", p[0], p[1]))
             .collect();
-        println!(
+        outln!(
             "uniform (UPS)        base {}, origin ({}, {}), lattice polygon {}",
             u.base,
             u.origin[0],
             u.origin[1],
             corners.join(" ")
-        );
-        println!(
+        )?;
+        outln!(
             "                     up to {} wavelet levels",
             u.wavelet_levels_available.min(62)
-        );
+        )?;
     }
+    Ok(())
 }

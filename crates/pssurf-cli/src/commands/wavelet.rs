@@ -28,7 +28,7 @@ pub struct WaveletArgs {
 pub fn run(args: &WaveletArgs) -> Result<()> {
     let file = pssurf::io::load(&args.surface)?;
     let u = uniform::require(&file, &args.surface, "wavelet")?;
-    let json = report(&u.wavelet_transform(args.levels)?, u.coordinate_names());
+    let json = report(&u.wavelet_transform(args.levels)?, u.coordinate_names())?;
     if let Some(path) = &args.output {
         let text = serde_json::to_string(&json)? + "\n";
         pssurf::io::atomic_write_bytes(path, pssurf::io::Durability::Atomic, text.as_bytes())?;
@@ -38,15 +38,15 @@ pub fn run(args: &WaveletArgs) -> Result<()> {
 }
 
 /// Prints the spectrum and histograms; returns the decomposition as JSON.
-fn report(dec: &UpsDecomposition, names: &[&str]) -> serde_json::Value {
+fn report(dec: &UpsDecomposition, names: &[&str]) -> Result<serde_json::Value> {
     let spectrum = dec.spectrum();
-    println!(
+    outln!(
         "UPS wavelet spectrum, {} levels (level 1 is the coarsest)",
         dec.levels()
-    );
-    println!("{}", stats_table(&spectrum, names, false));
-    println!();
-    println!("histograms of |d| / max |d| per level and coordinate (10 bins):");
+    )?;
+    outln!("{}", stats_table(&spectrum, names, false))?;
+    outln!()?;
+    outln!("histograms of |d| / max |d| per level and coordinate (10 bins):")?;
     for s in &spectrum {
         let d = dec.coefficients(s.level - 1, s.component);
         let mut bins = [0usize; 10];
@@ -63,12 +63,12 @@ fn report(dec: &UpsDecomposition, names: &[&str]) -> serde_json::Value {
             .iter()
             .map(|&b| format!("{:<8}", "#".repeat((b * 8).div_ceil(top))))
             .collect();
-        println!(
+        outln!(
             "level {} {:>2}  |{}|",
             s.level,
             names.get(s.component).copied().unwrap_or("?"),
             bars.join("|")
-        );
+        )?;
     }
     let coarse_text = pssurf::io::to_json_string(&Surface::from(dec.coarse()));
     let coarse: serde_json::Value = serde_json::from_str(&coarse_text).expect("our own JSON");
@@ -82,11 +82,11 @@ fn report(dec: &UpsDecomposition, names: &[&str]) -> serde_json::Value {
             json!({ "level": k + 1, "base": dec.level_base(k), "coefficients": coeffs })
         })
         .collect();
-    json!({
+    Ok(json!({
         "format": "pssurf-wavelet",
         "version": 1,
         "levels": dec.levels(),
         "coarse": coarse,
         "details": details,
-    })
+    }))
 }
