@@ -676,7 +676,7 @@ fn fit_gradients_stay_bounded_on_a_nearly_gridded_csv() {
 }
 
 /// Issue 12, item 4: nearly collinear rows are a warning naming them, not a failure; nearly
-/// duplicate rows are named too (such data still fails to fit today: see the issue note).
+/// duplicate rows are named and merged into their mean (every column), and the fit succeeds.
 #[test]
 fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
     let d = tmp();
@@ -696,6 +696,19 @@ fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
         "{err}"
     );
     ok(&["info", &s(&out)]);
+    // Without given triangles, the hull sliver (rows 1, 2, 3: row 3 is 1e-10 inside the
+    // hull edge from row 1 to row 2) is left out of the domain, with a warning.
+    let data = write(d.path(), "h.csv", "x,y,z\n0,0,0\n2,0,1\n1,1e-10,1\n1,1,0\n");
+    let err = ok_stderr(&["fit", &s(&data), "-o", &s(&out)]);
+    assert!(
+        err.contains("are nearly collinear on the boundary"),
+        "{err}"
+    );
+    for r in ["1", "2", "3"] {
+        assert!(err.contains(r), "{err}");
+    }
+    assert!(err.contains("fitted 4 points (2 triangles"), "{err}");
+    ok(&["info", &s(&out)]);
     // Rows 2 and 6 are 1e-12 apart.
     let data = write(
         d.path(),
@@ -704,8 +717,25 @@ fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
     );
     let run = pssurf(&["fit", &s(&data), "-o", &s(&out)]);
     let err = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{err}");
     assert!(
-        err.contains("warning: rows 2 and 6 are only 1.00e-12 apart"),
+        err.contains(
+            "warning: rows 2 and 6 are only 1.00e-12 apart (under 1e-9 of the data's extent): merged into one point with their mean"
+        ),
         "{err}"
     );
+    assert!(err.contains("fitted 5 points"), "{err}");
+    // The merged vertex carries the mean of the rows' values, (1 + 1) / 2, exactly.
+    let pts = write(d.path(), "at.csv", "x,y\n1.0000000000005,0\n");
+    let at = ok(&["eval", &s(&out), "--at", &s(&pts)]);
+    let z: f64 = at
+        .lines()
+        .nth(1)
+        .unwrap()
+        .rsplit(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((z - 1.0).abs() < 1e-9, "{z}");
 }

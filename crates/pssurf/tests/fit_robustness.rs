@@ -91,8 +91,8 @@ fn offset_set(r: &mut ChaCha8Rng, offset: f64) -> Option<(String, Vec<Point2<f64
     Some((format!("offset {offset:e} spread 1e-3"), pts))
 }
 
-/// Sets on which the Delaunay triangulation has slivers or near-duplicate vertices that the
-/// PS refinement cannot split (not handled yet: see the test below).
+/// Sets on which the Delaunay triangulation has boundary slivers (nearly collinear runs on
+/// the hull) or needles between nearly coincident points.
 fn sliver_sets() -> Vec<(String, Vec<Point2<f64>>)> {
     let p = Point2::new;
     let mut sets = Vec::new();
@@ -158,16 +158,53 @@ fn fit_writes_files_that_load_on_near_degenerate_sets() {
     assert_eq!(tried, 19, "every set fitted and reloaded");
 }
 
-/// Not handled yet (issue 12): nearly collinear runs make interior slivers whose incentre
-/// split puts an edge point within 1e-10 of a vertex; clusters within 1e-12 need merging of
-/// near-duplicates (`pssurf fit` warns naming the rows). Today these are refused with an
-/// error, and no file is written.
+/// Nearly collinear runs on the hull make boundary slivers, which the Delaunay triangulation
+/// peels off (thinner than `PEEL_THICKNESS`); points within 1e-12 of each other are merged
+/// into their mean. Every fit succeeds, loads again, interpolates every (merged) value and
+/// stays bounded.
 #[test]
-#[ignore = "issue 12: sliver and near-duplicate handling is not built yet"]
 fn fit_handles_slivers_and_near_duplicates() {
     let (tried, failed) = fit_and_reload(sliver_sets());
     assert!(failed.is_empty(), "{}", failed.join("\n"));
     assert_eq!(tried, 10);
+    for (name, pts) in sliver_sets() {
+        let z: Vec<f64> = pts.iter().map(|q| (3.0 * q.x).sin() * q.y).collect();
+        let fit = interpolate(&pts, &z, GradientMethod::Local).unwrap();
+        if name.starts_with("clusters") {
+            // Four centres, four points each.
+            assert_eq!(fit.merged.len(), 4, "{name}");
+            assert!(fit.merged.iter().all(|g| g.len() == 4), "{name}");
+        } else {
+            assert!(fit.merged.is_empty(), "{name}");
+        }
+        let t = fit.spline.basis().triangulation();
+        let mut at = fit.spline.evaluator();
+        let z_max = z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (k, &row) in fit.data_index.iter().enumerate() {
+            let group = fit.merged.iter().find(|g| g[0] == row);
+            let want = group.map_or(z[row], |g| {
+                g.iter().map(|&i| z[i]).sum::<f64>() / g.len() as f64
+            });
+            let got = at.value(t.vertex(k)).expect("a vertex is in the domain");
+            assert!(
+                (got - want).abs() <= 1e-12 * z_max,
+                "{name}: vertex {k}: {got} vs {want}"
+            );
+        }
+        // Bounded between the data: sample every triangle at interior points.
+        for tr in 0..t.triangle_count() {
+            let g = t.triangle_geometry(tr);
+            for b in [
+                [1.0 / 3.0; 3],
+                [0.6, 0.2, 0.2],
+                [0.2, 0.6, 0.2],
+                [0.2, 0.2, 0.6],
+            ] {
+                let v = at.value(g.point(b)).expect("inside its triangle");
+                assert!(v.abs() <= 10.0 * z_max, "{name}: triangle {tr}: {v}");
+            }
+        }
+    }
 }
 
 /// The largest error of the fit of sin(3x) cos(2y) on a 20 × 20 grid jittered by `delta`,

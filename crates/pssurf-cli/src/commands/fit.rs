@@ -8,7 +8,8 @@ use nalgebra::{Point2, Vector2};
 use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
-    GradientMethod, Smoothing, estimate_gradients_by, hermite_spline, smooth_scattered,
+    GradientMethod, NEAR_DUPLICATE, Smoothing, estimate_gradients_by, hermite_spline,
+    near_duplicate_groups, smooth_scattered,
 };
 
 use crate::table::{Table, read_triangles};
@@ -133,12 +134,9 @@ pub fn run(args: &FitArgs) -> Result<()> {
     let table = Table::read(&args.data)?;
     let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
     let mut points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
-    let mut rows: Vec<&Vec<f64>> = table.rows.iter().collect();
+    let mut rows: Vec<Vec<f64>> = table.rows.clone();
     let mut row_of: Vec<usize> = (0..points.len()).collect();
     if args.triangles.is_none() {
-        // Without given triangles the vertex order is ours to choose: a space-filling curve
-        // keeps neighbouring vertices close in memory, which makes every later step faster.
-        // (Duplicates are still reported by their data rows, below.)
         if let Some((first, second)) = pssurf::triangulation::duplicate_points(&points) {
             bail!(
                 "{}: rows {} and {} have the same (x, y); remove one",
@@ -147,28 +145,42 @@ pub fn run(args: &FitArgs) -> Result<()> {
                 second + 1
             );
         }
+        // Without given triangles the vertices are ours to choose: nearly coincident points
+        // become one at their mean (their slopes would be meaningless), ...
+        let groups = near_duplicate_groups(&points, NEAR_DUPLICATE);
+        warn_merged(&points, &groups);
+        (rows, row_of) = merge_rows(rows, &groups);
+        points = rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
+        // ... and a space-filling curve keeps neighbouring vertices close in memory, which
+        // makes every later step faster.
         let order = pssurf::triangulation::morton_order(&points);
         points = order.iter().map(|&i| points[i as usize]).collect();
-        rows = order.iter().map(|&i| &table.rows[i as usize]).collect();
-        row_of = order.iter().map(|&i| i as usize).collect();
+        rows = order.iter().map(|&i| rows[i as usize].clone()).collect();
+        row_of = order.iter().map(|&i| row_of[i as usize]).collect();
+    } else {
+        warn_near_duplicates(&points, &row_of);
     }
     let values: Vec<f64> = rows.iter().map(|r| r[z]).collect();
-    warn_near_duplicates(&points, &row_of);
     let tri = match &args.triangles {
         Some(path) => {
             let t = read_triangles(path, points.len())?;
             Triangulation::try_new(points, t)
                 .with_context(|| format!("{}: invalid triangulation", path.display()))?
         }
-        None => Triangulation::delaunay(points).map_err(|e| match e {
-            TriangulationError::DuplicateVertex { first, second } => anyhow::anyhow!(
-                "{}: rows {} and {} have the same (x, y); remove one",
-                args.data.display(),
-                first + 1,
-                second + 1
-            ),
-            e => anyhow::anyhow!("{}: cannot triangulate: {e}", args.data.display()),
-        })?,
+        None => Triangulation::delaunay_with_peeled(points)
+            .map(|(t, peeled)| {
+                warn_peeled(&peeled, &row_of);
+                t
+            })
+            .map_err(|e| match e {
+                TriangulationError::DuplicateVertex { first, second } => anyhow::anyhow!(
+                    "{}: rows {} and {} have the same (x, y); remove one",
+                    args.data.display(),
+                    first + 1,
+                    second + 1
+                ),
+                e => anyhow::anyhow!("{}: cannot triangulate: {e}", args.data.display()),
+            })?,
     };
     warn_slivers(&tri, &row_of);
     let basis = Arc::new(PsBasis::new(
@@ -329,8 +341,6 @@ fn approximate(args: &FitArgs, m: usize) -> Result<()> {
     Ok(())
 }
 
-/// Relative distance below which two data points count as nearly duplicate.
-const NEAR_DUPLICATE: f64 = 1e-9;
 /// Relative area below which a triangle counts as a sliver (nearly collinear vertices).
 const SLIVER: f64 = 1e-9;
 /// How many cases of each kind are named.
@@ -351,6 +361,75 @@ fn warn_near_duplicates(points: &[Point2<f64>], row_of: &[usize]) {
     }
     if pairs.len() > NAMED {
         eprintln!("warning: more nearly duplicate rows than these {NAMED}");
+    }
+}
+
+/// Warns (without failing) that groups of nearly coincident rows were merged, naming them.
+fn warn_merged(points: &[Point2<f64>], groups: &[Vec<usize>]) {
+    for g in groups.iter().take(NAMED) {
+        let spread = g
+            .iter()
+            .map(|&k| (points[k] - points[g[0]]).norm())
+            .fold(0.0, f64::max);
+        let named: Vec<String> = g.iter().take(NAMED).map(|&k| (k + 1).to_string()).collect();
+        eprintln!(
+            "warning: rows {}{} are only {spread:.2e} apart (under {NEAR_DUPLICATE:e} of the data's extent): merged into one point with their mean",
+            named.join(" and "),
+            if g.len() > NAMED { " and more" } else { "" },
+        );
+    }
+    if groups.len() > NAMED {
+        eprintln!(
+            "warning: {} more groups of nearly coincident rows merged",
+            groups.len() - NAMED
+        );
+    }
+}
+
+/// The data rows and their first row numbers after replacing each group of rows by their
+/// mean (every column; offsets from the group's first row keep it exact to rounding far from
+/// the origin), in the order of the groups' first rows.
+fn merge_rows(rows: Vec<Vec<f64>>, groups: &[Vec<usize>]) -> (Vec<Vec<f64>>, Vec<usize>) {
+    if groups.is_empty() {
+        let n = rows.len();
+        return (rows, (0..n).collect());
+    }
+    let mut group_of = vec![None; rows.len()];
+    for g in groups {
+        g.iter().for_each(|&k| group_of[k] = Some(g));
+    }
+    let mut merged = (Vec::new(), Vec::new());
+    for (k, row) in rows.iter().enumerate() {
+        let row = match group_of[k] {
+            None => row.clone(),
+            Some(g) if g[0] == k => (0..row.len())
+                .map(|c| {
+                    let shift = g.iter().map(|&i| rows[i][c] - row[c]).sum::<f64>();
+                    row[c] + shift / g.len() as f64
+                })
+                .collect(),
+            Some(_) => continue,
+        };
+        merged.0.push(row);
+        merged.1.push(k);
+    }
+    merged
+}
+
+/// Warns that boundary slivers were left out of the Delaunay domain, naming their rows.
+fn warn_peeled(peeled: &[[usize; 3]], row_of: &[usize]) {
+    for t in peeled.iter().take(NAMED) {
+        let [a, b, c] = t.map(|v| row_of[v] + 1);
+        eprintln!(
+            "warning: rows {a}, {b} and {c} are nearly collinear on the boundary: the sliver between them (thinner than {:e} of its length) is left out of the domain",
+            pssurf::triangulation::PEEL_THICKNESS
+        );
+    }
+    if peeled.len() > NAMED {
+        eprintln!(
+            "warning: {} more boundary slivers left out",
+            peeled.len() - NAMED
+        );
     }
 }
 

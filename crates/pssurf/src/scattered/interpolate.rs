@@ -7,6 +7,7 @@ use nalgebra::{Point2, Vector2};
 
 use super::global::{GlobalGradientError, anchored_global_gradients};
 use super::local::{GradientError, GradientFit, estimate_gradients};
+use super::merge::{NEAR_DUPLICATE, merge_near_duplicates};
 use crate::ps::{Hermite, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule};
 use crate::triangulation::{Triangulation, TriangulationError, duplicate_points, morton_order};
 
@@ -113,14 +114,21 @@ pub fn hermite_spline(
 pub struct Interpolant {
     /// The PS-spline; its vertex k is data point `data_index[k]`.
     pub spline: PsSpline<f64>,
-    /// The data point of each vertex (vertices are ordered along a space-filling curve).
+    /// The data point of each vertex (vertices are ordered along a space-filling curve); for
+    /// a vertex made by merging nearly coincident points, the first of them.
     pub data_index: Vec<usize>,
+    /// The groups of data points (indices, sorted) that were nearly coincident and were
+    /// merged into one vertex at their mean with their mean value ([`NEAR_DUPLICATE`]).
+    pub merged: Vec<Vec<usize>>,
     /// How the gradients were estimated.
     pub gradients: GradientReport,
 }
 
 /// The Hermite PS-spline through (points[k], values[k]) on their Delaunay triangulation,
 /// with the incentre split and optimal PS-triangles, and gradients estimated by `method`.
+///
+/// Points closer than [`NEAR_DUPLICATE`] × the data's extent are merged first (see
+/// [`merge_near_duplicates`]); exactly repeated points are an error.
 pub fn interpolate(
     points: &[Point2<f64>],
     values: &[f64],
@@ -138,10 +146,15 @@ pub fn interpolate(
     if let Some((first, second)) = duplicate_points(points) {
         return Err(TriangulationError::DuplicateVertex { first, second }.into());
     }
+    let data = merge_near_duplicates(points, values, NEAR_DUPLICATE);
     // A space-filling-curve order keeps neighbouring vertices close in memory.
-    let data_index: Vec<usize> = morton_order(points).iter().map(|&i| i as usize).collect();
-    let ordered: Vec<Point2<f64>> = data_index.iter().map(|&k| points[k]).collect();
-    let z: Vec<f64> = data_index.iter().map(|&k| values[k]).collect();
+    let order: Vec<usize> = morton_order(&data.points)
+        .iter()
+        .map(|&i| i as usize)
+        .collect();
+    let ordered: Vec<Point2<f64>> = order.iter().map(|&k| data.points[k]).collect();
+    let z: Vec<f64> = order.iter().map(|&k| data.values[k]).collect();
+    let data_index: Vec<usize> = order.iter().map(|&k| data.first_index[k]).collect();
     let tri = Triangulation::delaunay(ordered)?;
     let basis = Arc::new(PsBasis::new(
         tri,
@@ -152,6 +165,7 @@ pub fn interpolate(
     Ok(Interpolant {
         spline: hermite_spline(basis, &z, &g)?,
         data_index,
+        merged: data.merged,
         gradients,
     })
 }

@@ -6,6 +6,7 @@ mod diagnostics;
 mod global;
 mod interpolate;
 mod local;
+mod merge;
 mod smoothing;
 
 pub use coarse::coarse_vertices;
@@ -18,6 +19,7 @@ pub use interpolate::{
 pub use local::{
     GradientError, GradientFit, MAX_CONDITION, MAX_USABLE_CONDITION, estimate_gradients,
 };
+pub use merge::{MergedData, NEAR_DUPLICATE, merge_near_duplicates, near_duplicate_groups};
 pub use smoothing::{
     Smoothing, SmoothingError, SmoothingFit, Trial, smooth_scattered, smoothing_fit,
 };

@@ -6,6 +6,7 @@ mod error;
 mod locate;
 mod validate;
 
+pub use delaunay::PEEL_THICKNESS;
 pub use error::TriangulationError;
 pub use locate::{Cursor, INSIDE_TOLERANCE, Location};
 
@@ -77,8 +78,18 @@ impl Triangulation {
     }
 
     /// The Delaunay triangulation of scattered points (by the `spade` crate). Vertex `i` of
-    /// the result is `points[i]`; coincident points are an error naming both.
+    /// the result is `points[i]`; coincident points are an error naming both. Boundary
+    /// slivers thinner than [`PEEL_THICKNESS`] are left out of the domain (their vertices
+    /// stay in it).
     pub fn delaunay(points: Vec<Point2<f64>>) -> Result<Self, TriangulationError> {
+        delaunay::delaunay(points).map(|(t, _)| t)
+    }
+
+    /// [`Triangulation::delaunay`], with the boundary slivers it left out (vertex indices of
+    /// `points`), so that callers can name them.
+    pub fn delaunay_with_peeled(
+        points: Vec<Point2<f64>>,
+    ) -> Result<(Self, Vec<[usize; 3]>), TriangulationError> {
         delaunay::delaunay(points)
     }
 

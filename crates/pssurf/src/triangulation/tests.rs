@@ -193,3 +193,44 @@ fn delaunay_peels_zero_area_slivers_off_the_hull() {
     }
     assert_eq!(t.vertex_count(), 60);
 }
+
+#[test]
+fn delaunay_peels_thin_hull_slivers_without_losing_vertices_or_making_bow_ties() {
+    // Row 2 lies 1e-10 inside the hull edge (0,0)–(2,0): the sliver between them is peeled.
+    let (t, peeled) = Triangulation::delaunay_with_peeled(vec![
+        p(0.0, 0.0),
+        p(2.0, 0.0),
+        p(1.0, 1e-10),
+        p(1.0, 1.0),
+    ])
+    .unwrap();
+    assert_eq!(peeled.len(), 1);
+    let mut sliver = peeled[0];
+    sliver.sort_unstable();
+    assert_eq!(sliver, [0, 1, 2]);
+    assert_eq!((t.vertex_count(), t.triangle_count()), (4, 2));
+    // 1e-7 inside is thicker than PEEL_THICKNESS: kept.
+    let (t, peeled) = Triangulation::delaunay_with_peeled(vec![
+        p(0.0, 0.0),
+        p(2.0, 0.0),
+        p(1.0, 1e-7),
+        p(1.0, 1.0),
+    ])
+    .unwrap();
+    assert!(peeled.is_empty());
+    assert_eq!(t.triangle_count(), 3);
+    // Stacked slivers over the hull edge (0,0)–(2,0): peeling goes on layer by layer but
+    // never removes a vertex's last triangle nor joins two parts at one vertex (the result
+    // validates, so neither happened).
+    let (t, peeled) = Triangulation::delaunay_with_peeled(vec![
+        p(0.0, 0.0),
+        p(2.0, 0.0),
+        p(1.0, 1e-10),
+        p(1.0, 2e-10),
+        p(1.0, 1.0),
+    ])
+    .unwrap();
+    assert!(!peeled.is_empty());
+    assert_eq!(t.vertex_count(), 5);
+    assert_eq!(t.triangle_count() + peeled.len(), 5);
+}
