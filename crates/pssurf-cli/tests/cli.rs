@@ -569,6 +569,62 @@ fn fit_global_gradients_and_smoothing_fit_write_loadable_surfaces() {
         "60",
     ]);
     assert!(msg.contains("zx, zy are not used"), "{msg}");
+    // The user's own coarse triangulation: its vertices, with or without its triangles.
+    let vertices = write(
+        d.path(),
+        "v.csv",
+        "x,y\n0,0\n1,0\n1,1\n0,1\n0.5,0.5\n0.5,0\n1,0.5\n0.5,1\n0,0.5\n",
+    );
+    let triangles = write(
+        d.path(),
+        "vt.csv",
+        "0,5,4\n5,1,4\n1,6,4\n6,2,4\n2,7,4\n7,3,4\n3,8,4\n8,0,4\n",
+    );
+    let (data_s, out_s, vertices_s) = (s(&data), s(&out), s(&vertices));
+    let triangles_s = s(&triangles);
+    for extra in [vec![], vec!["--triangles", triangles_s.as_str()]] {
+        let mut args = vec![
+            "fit",
+            &data_s,
+            "-o",
+            &out_s,
+            "--approximate-on",
+            &vertices_s,
+            "--smooth",
+            "1e-4",
+        ];
+        args.extend(extra);
+        let msg = ok_stderr(&args);
+        assert!(msg.contains("on 9 vertices (8 triangles)"), "{msg}");
+        let info = ok(&["info", &s(&out)]);
+        assert!(info.contains("vertices             9"), "{info}");
+    }
+    // Data outside the coarse triangulation are named.
+    let small = write(d.path(), "s.csv", "x,y\n0,0\n0.9,0\n0,0.9\n0.9,0.9\n");
+    let e = fails(&[
+        "fit",
+        &s(&data),
+        "-o",
+        &s(&other),
+        "--approximate-on",
+        &s(&small),
+    ]);
+    assert!(
+        e.contains("lies outside the coarse triangulation") && e.trim_end().lines().count() == 1,
+        "{e}"
+    );
+    let e = fails(&[
+        "fit",
+        &s(&data),
+        "-o",
+        &s(&other),
+        "--approximate",
+        "60",
+        "--triangles",
+        &s(&triangles),
+    ]);
+    assert!(e.contains("--approximate-on"), "{e}");
+    assert!(!other.exists());
 }
 
 /// Writing through a symbolic link updates the file it points to and keeps the link; a
@@ -720,7 +776,7 @@ fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
     assert!(run.status.success(), "{err}");
     assert!(
         err.contains(
-            "warning: rows 2 and 6 are only 1.00e-12 apart (under 1e-9 of the data's extent): merged into one point with their mean"
+            "warning: rows 2 and 6 are only 1.00e-12 apart (under 4.24e-9, nearly coincident for this data's extent and coordinates): merged into one point with their mean"
         ),
         "{err}"
     );

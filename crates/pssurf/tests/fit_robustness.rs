@@ -3,7 +3,12 @@
 #![cfg(feature = "io")]
 
 use pssurf::prelude::*;
-use pssurf::scattered::{GradientMethod, interpolate};
+use pssurf::ps::Energy;
+use pssurf::scattered::{
+    FitError, GradientMethod, PRECISION_HINT, Smoothing, SmoothingError, interpolate,
+    smooth_scattered,
+};
+use pssurf::triangulation::TriangulationError;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -239,4 +244,190 @@ fn gradients_do_not_explode_on_nearly_gridded_data() {
             );
         }
     }
+}
+
+/// A random adversarial point set of one of several kinds, at a random scale, offset and
+/// perturbation size.
+fn random_adversarial_set(
+    kind: u8,
+    seed: u64,
+    log_delta: f64,
+    log_offset: f64,
+) -> Vec<Point2<f64>> {
+    let mut r = ChaCha8Rng::seed_from_u64(seed);
+    let delta = 10f64.powf(log_delta);
+    let offset = 10f64.powf(log_offset);
+    let scale = 10f64.powf(r.random_range(-3.0..3.0));
+    let jitter = |r: &mut ChaCha8Rng| r.random_range(-delta..=delta);
+    let unit: Vec<Point2<f64>> = match kind % 6 {
+        // A jittered grid, possibly subsampled.
+        0 => {
+            let n = r.random_range(3..15);
+            let keep = r.random_range(0.2..=1.0);
+            let mut pts = Vec::new();
+            for i in 0..n {
+                for j in 0..n {
+                    if r.random_bool(keep) {
+                        let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+                        pts.push(Point2::new(x + jitter(&mut r), y + jitter(&mut r)));
+                    }
+                }
+            }
+            pts
+        }
+        // Nearly collinear runs along random lines, with a few points off them.
+        1 => {
+            let mut pts = Vec::new();
+            for _ in 0..r.random_range(1..4) {
+                let (a, b) = (r.random_range(0.0..1.0), r.random_range(-1.0..1.0));
+                for k in 0..r.random_range(3..25) {
+                    let x = k as f64 / 24.0;
+                    pts.push(Point2::new(x, a + b * x + jitter(&mut r)));
+                }
+            }
+            for _ in 0..r.random_range(1..5) {
+                pts.push(Point2::new(
+                    r.random_range(0.0..1.0),
+                    r.random_range(-1.0..2.0),
+                ));
+            }
+            pts
+        }
+        // Clusters of nearly coincident points.
+        2 => {
+            let mut pts = Vec::new();
+            for _ in 0..r.random_range(3..8) {
+                let c = Point2::new(r.random_range(0.0..1.0), r.random_range(0.0..1.0));
+                for _ in 0..r.random_range(1..6) {
+                    pts.push(Point2::new(c.x + jitter(&mut r), c.y + jitter(&mut r)));
+                }
+            }
+            pts
+        }
+        // Nearly cocircular points (a regular polygon, jittered) with its centre.
+        3 => {
+            let n = r.random_range(4..40);
+            let mut pts: Vec<Point2<f64>> = (0..n)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * k as f64 / n as f64;
+                    Point2::new(a.cos() + jitter(&mut r), a.sin() + jitter(&mut r))
+                })
+                .collect();
+            pts.push(Point2::new(jitter(&mut r), jitter(&mut r)));
+            pts
+        }
+        // Uniform random points.
+        4 => (0..r.random_range(3..80))
+            .map(|_| Point2::new(r.random_range(0.0..1.0), r.random_range(0.0..1.0)))
+            .collect(),
+        // Points on a parabola's arc, nearly collinear locally, plus a few others.
+        _ => {
+            let mut pts: Vec<Point2<f64>> = (0..r.random_range(5..40))
+                .map(|k| {
+                    let x = k as f64 / 40.0;
+                    Point2::new(x, 1e-3 * x * x + jitter(&mut r))
+                })
+                .collect();
+            pts.push(Point2::new(0.5, 1.0));
+            pts.push(Point2::new(0.2, -1.0));
+            pts
+        }
+    };
+    unit.into_iter()
+        .map(|p| Point2::new(offset + scale * p.x, offset + scale * p.y))
+        .collect()
+}
+
+/// The outcome of fitting one set: written and reloaded (`Ok(true)`), refused because the
+/// data's detail is beyond its coordinates' precision (`Ok(false)`), or a failure.
+fn fit_or_refuse(pts: &[Point2<f64>], method: GradientMethod) -> Result<bool, String> {
+    let mut unique = pts.to_vec();
+    unique.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    unique.dedup();
+    let (lo, hi) = unique.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+        (lo.min(p.x).min(p.y), hi.max(p.x).max(p.y))
+    });
+    let z: Vec<f64> = unique
+        .iter()
+        .map(|q| {
+            // (A single point has no extent: then any finite values do.)
+            let extent = (hi - lo).max(f64::MIN_POSITIVE);
+            let (u, v) = ((q.x - lo) / extent, (q.y - lo) / extent);
+            (3.0 * u).sin() * v
+        })
+        .collect();
+    if method == GradientMethod::Global {
+        // The smoothing fit on half the points as vertices, once per set.
+        let m = (unique.len() / 2).max(3);
+        match smooth_scattered(
+            &unique,
+            &z,
+            m,
+            Energy::ThinPlate,
+            Smoothing::Gcv,
+            &mut |_| {},
+        ) {
+            Ok(fit) => round_trip(&fit.spline).map(|_| ())?,
+            Err(
+                SmoothingError::Triangulation(TriangulationError::CollinearPoints)
+                | SmoothingError::Undetermined(..)
+                | SmoothingError::BeyondPrecision(_),
+            ) => {}
+            Err(e) => return Err(format!("no smoothing fit: {e}")),
+        }
+    }
+    match interpolate(&unique, &z, method) {
+        Ok(fit) => round_trip(&fit.spline).map(|_| true),
+        // Refusing is allowed when the points are (nearly) collinear…
+        Err(FitError::Triangulation(TriangulationError::CollinearPoints)) => Ok(true),
+        // … or finer than their coordinates resolve (which the error says).
+        Err(FitError::BeyondPrecision {
+            height, magnitude, ..
+        }) => {
+            assert!(height < PRECISION_HINT * magnitude);
+            Ok(false)
+        }
+        Err(e) => Err(format!("no fit: {e}")),
+    }
+}
+
+/// Every adversarial set either fits into a surface that loads again, or is refused as
+/// collinear or as finer than its coordinates resolve (counted and bounded); never another
+/// failure, never a panic.
+#[test]
+fn random_adversarial_sets_fit_and_reload() {
+    use proptest::strategy::{Strategy, ValueTree};
+    use proptest::test_runner::TestRunner;
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(192);
+    let mut runner = TestRunner::deterministic();
+    let strategy = (0u8..6, 0u64..1_000_000, -16.0f64..-2.0, -1.0f64..9.0);
+    let (mut refused, mut far_from_origin) = (0, 0);
+    for _ in 0..cases {
+        let (kind, seed, log_delta, log_offset) = strategy.new_tree(&mut runner).unwrap().current();
+        let pts = random_adversarial_set(kind, seed, log_delta, log_offset);
+        if log_offset > 6.0 {
+            far_from_origin += 1;
+        }
+        for method in METHODS {
+            match fit_or_refuse(&pts, method) {
+                Ok(true) => {}
+                Ok(false) => {
+                    // Only far from the origin, where the spacing of doubles is coarse.
+                    assert!(log_offset > 6.0, "{kind} {seed} {log_delta} {log_offset}");
+                    refused += 1;
+                }
+                Err(e) => {
+                    panic!("{method:?}, set ({kind}, {seed}, {log_delta}, {log_offset}): {e}")
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{refused} of {} fits refused as beyond precision ({far_from_origin} sets beyond 1e6)",
+        2 * cases
+    );
+    assert!(refused <= far_from_origin, "{refused} refusals");
 }

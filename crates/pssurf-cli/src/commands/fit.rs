@@ -8,8 +8,9 @@ use nalgebra::{Point2, Vector2};
 use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
-    GradientMethod, NEAR_DUPLICATE, Smoothing, estimate_gradients_by, hermite_spline,
-    near_duplicate_groups, smooth_scattered,
+    FitError, GradientMethod, NEAR_DUPLICATE, Smoothing, data_basis, estimate_gradients_by,
+    hermite_spline, near_duplicate_distance, near_duplicate_groups, smooth_scattered,
+    smoothing_fit,
 };
 
 use crate::table::{Table, read_triangles};
@@ -62,7 +63,7 @@ pub struct FitArgs {
     #[arg(short, long, value_name = "SURF.json")]
     pub output: PathBuf,
     /// Use these triangles instead of the Delaunay triangulation: CSV rows `i,j,k` of
-    /// zero-based data row indices.
+    /// zero-based data row indices (with --approximate-on: of the rows of VERTICES.csv).
     #[arg(long, value_name = "TRI.csv")]
     pub triangles: Option<PathBuf>,
     /// The interior split point of each triangle of the Powell–Sabin refinement.
@@ -72,21 +73,27 @@ pub struct FitArgs {
     /// on real elevation data it is the more accurate (docs/performance.md, "Accuracy").
     #[arg(long, value_enum, default_value_t = Gradients::Local)]
     pub gradients: Gradients,
-    /// Approximate instead of interpolating: a least-squares PS-spline on the Delaunay
-    /// triangulation of about M of the points (hull corners plus a spatially even sample).
-    #[arg(long, value_name = "M")]
+    /// Approximate instead of interpolating: a least-squares PS-spline on a grid of about M
+    /// vertices over the data's bounding box (on the Delaunay triangulation of the points
+    /// themselves when M ≥ their number).
+    #[arg(long, value_name = "M", group = "approximation")]
     pub approximate: Option<usize>,
-    /// With --approximate: the smoothing weight λ of Σ residual² + λ·energy, or `gcv` to
-    /// choose it by generalised cross-validation.
+    /// Approximate on your own coarse triangulation: its vertices as CSV columns `x,y`, its
+    /// triangles from --triangles (rows of VERTICES.csv), else their Delaunay triangulation.
+    /// Every data point must lie in it.
+    #[arg(long, value_name = "VERTICES.csv", group = "approximation")]
+    pub approximate_on: Option<PathBuf>,
+    /// With --approximate(-on): the smoothing weight λ of Σ residual² + λ·energy, or `gcv`
+    /// to choose it by generalised cross-validation.
     #[arg(
         long,
         value_name = "λ|gcv",
         default_value = "gcv",
-        requires = "approximate"
+        requires = "approximation"
     )]
     pub smooth: SmoothArg,
-    /// With --approximate: the energy that λ weighs.
-    #[arg(long, value_enum, default_value_t = EnergyArg::HessianJumps, requires = "approximate")]
+    /// With --approximate(-on): the energy that λ weighs.
+    #[arg(long, value_enum, default_value_t = EnergyArg::HessianJumps, requires = "approximation")]
     pub energy: EnergyArg,
 }
 
@@ -129,7 +136,10 @@ impl From<EnergyArg> for Energy {
 /// Runs `pssurf fit`.
 pub fn run(args: &FitArgs) -> Result<()> {
     if let Some(m) = args.approximate {
-        return approximate(args, m);
+        return approximate(args, Coarse::Grid(m));
+    }
+    if let Some(vertices) = &args.approximate_on {
+        return approximate(args, Coarse::Given(vertices));
     }
     let table = Table::read(&args.data)?;
     let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
@@ -148,7 +158,11 @@ pub fn run(args: &FitArgs) -> Result<()> {
         // Without given triangles the vertices are ours to choose: nearly coincident points
         // become one at their mean (their slopes would be meaningless), ...
         let groups = near_duplicate_groups(&points, NEAR_DUPLICATE);
-        warn_merged(&points, &groups);
+        warn_merged(
+            &points,
+            &groups,
+            near_duplicate_distance(&points, NEAR_DUPLICATE),
+        );
         (rows, row_of) = merge_rows(rows, &groups);
         points = rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
         // ... and a space-filling curve keeps neighbouring vertices close in memory, which
@@ -183,11 +197,14 @@ pub fn run(args: &FitArgs) -> Result<()> {
             })?,
     };
     warn_slivers(&tri, &row_of);
-    let basis = Arc::new(PsBasis::new(
-        tri,
-        args.split.into(),
-        &PsTriangleChoice::Optimal,
-    )?);
+    let basis = Arc::new(data_basis(tri, args.split.into()).map_err(|e| match e {
+        FitError::BeyondPrecision {
+            vertices,
+            height,
+            magnitude,
+        } => beyond_precision(&args.data, vertices.map(|v| row_of[v]), height, magnitude),
+        e => anyhow::anyhow!(e),
+    })?);
     let (gradients, method) = match gradient {
         Some((a, b)) => {
             let g: Vec<Vector2<f64>> = rows.iter().map(|r| Vector2::new(r[a], r[b])).collect();
@@ -200,6 +217,17 @@ pub fn run(args: &FitArgs) -> Result<()> {
                 Gradients::Global => "estimated by least Hessian-jump energy (global)",
             }
             .to_string();
+            match report.stronger_anchor {
+                Some(eta) if eta.is_finite() => {
+                    m += &format!(
+                        " (the global system is ill-conditioned on this triangulation: anchored to the local estimate with weight {eta:e})"
+                    )
+                }
+                Some(_) => {
+                    m += " (the global system is too ill-conditioned on this triangulation to be solved: the local estimate is used)"
+                }
+                None => {}
+            }
             if report.widened > 0 || report.planar > 0 {
                 m += &format!(
                     " (local fits: {} vertices needed a wider neighbourhood, {} a plane)",
@@ -259,15 +287,25 @@ impl Columns {
     }
 }
 
-/// `pssurf fit --approximate M`: the smoothing fit.
-fn approximate(args: &FitArgs, m: usize) -> Result<()> {
-    if args.triangles.is_some() {
-        bail!(
-            "--approximate makes its own coarse triangulation; it cannot be combined with --triangles"
-        );
-    }
-    if m < 3 {
-        bail!("--approximate {m}: needs at least 3 vertices");
+/// The coarse triangulation of a smoothing fit.
+enum Coarse<'a> {
+    /// About this many vertices, chosen by the library.
+    Grid(usize),
+    /// The user's vertices (and --triangles, if given).
+    Given(&'a Path),
+}
+
+/// `pssurf fit --approximate M` or `--approximate-on VERTICES.csv`: the smoothing fit.
+fn approximate(args: &FitArgs, coarse: Coarse) -> Result<()> {
+    if let Coarse::Grid(m) = coarse {
+        if args.triangles.is_some() {
+            bail!(
+                "--approximate makes its own coarse triangulation; give yours with --approximate-on VERTICES.csv --triangles TRI.csv"
+            );
+        }
+        if m < 3 {
+            bail!("--approximate {m}: needs at least 3 vertices");
+        }
     }
     let table = Table::read(&args.data)?;
     let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
@@ -281,6 +319,13 @@ fn approximate(args: &FitArgs, m: usize) -> Result<()> {
     let values: Vec<f64> = table.rows.iter().map(|r| r[z]).collect();
     let row_of: Vec<usize> = (0..points.len()).collect();
     warn_near_duplicates(&points, &row_of);
+    let given = match coarse {
+        Coarse::Given(path) => Some(Arc::new(user_coarse_basis(
+            path,
+            args.triangles.as_deref(),
+        )?)),
+        Coarse::Grid(_) => None,
+    };
     // GCV factorises the system for each λ it tries: show them as they come (indicatif
     // draws only on a terminal).
     let spinner = indicatif::ProgressBar::new_spinner().with_style(
@@ -296,14 +341,16 @@ fn approximate(args: &FitArgs, m: usize) -> Result<()> {
         ));
         spinner.tick();
     };
-    let fit = smooth_scattered(
-        &points,
-        &values,
-        m,
-        args.energy.into(),
-        args.smooth.0,
-        &mut on_trial,
-    );
+    let (energy, smoothing) = (args.energy.into(), args.smooth.0);
+    let fit = match (coarse, given) {
+        (_, Some(basis)) => {
+            smoothing_fit(basis, &points, &values, energy, smoothing, &mut on_trial)
+        }
+        (Coarse::Grid(m), None) => {
+            smooth_scattered(&points, &values, m, energy, smoothing, &mut on_trial)
+        }
+        (Coarse::Given(_), None) => unreachable!("a given triangulation was read above"),
+    };
     spinner.finish_and_clear();
     let fit = fit.map_err(|e| match e {
         pssurf::scattered::SmoothingError::Triangulation(TriangulationError::DuplicateVertex {
@@ -314,6 +361,18 @@ fn approximate(args: &FitArgs, m: usize) -> Result<()> {
             args.data.display(),
             first + 1,
             second + 1
+        ),
+        pssurf::scattered::SmoothingError::BeyondPrecision(FitError::BeyondPrecision {
+            vertices,
+            height,
+            magnitude,
+        }) => beyond_precision(&args.data, vertices, height, magnitude),
+        pssurf::scattered::SmoothingError::Outside(k) => anyhow::anyhow!(
+            "{}: row {} ({}, {}) lies outside the coarse triangulation",
+            args.data.display(),
+            k + 1,
+            points[k].x,
+            points[k].y
         ),
         e => anyhow::anyhow!("{}: {e}", args.data.display()),
     })?;
@@ -353,7 +412,7 @@ fn warn_near_duplicates(points: &[Point2<f64>], row_of: &[usize]) {
     let pairs = pssurf::scattered::near_duplicates(points, NEAR_DUPLICATE, NAMED + 1);
     for d in pairs.iter().take(NAMED) {
         eprintln!(
-            "warning: rows {} and {} are only {:.2e} apart (under {NEAR_DUPLICATE:e} of the data's extent): the surface will be steep between them; merge or remove one",
+            "warning: rows {} and {} are only {:.2e} apart (nearly coincident for this data's extent and coordinates): the surface will be steep between them; merge or remove one",
             row(d.first).min(row(d.second)),
             row(d.first).max(row(d.second)),
             d.distance
@@ -364,8 +423,49 @@ fn warn_near_duplicates(points: &[Point2<f64>], row_of: &[usize]) {
     }
 }
 
+/// The PS basis on the user's coarse triangulation: vertices `x,y` from `path`, triangles
+/// from `triangles` or else Delaunay.
+fn user_coarse_basis(path: &Path, triangles: Option<&Path>) -> Result<PsBasis> {
+    let table = Table::read(path)?;
+    let (Some(x), Some(y)) = (table.column("x"), table.column("y")) else {
+        bail!(
+            "{}: needs columns x,y (found: {})",
+            path.display(),
+            table.headers.join(",")
+        );
+    };
+    let vertices: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
+    let tri = match triangles {
+        Some(t) => {
+            let list = read_triangles(t, vertices.len())?;
+            Triangulation::try_new(vertices, list)
+                .with_context(|| format!("{}: invalid triangulation", t.display()))?
+        }
+        None => Triangulation::delaunay(vertices)
+            .with_context(|| format!("{}: cannot triangulate", path.display()))?,
+    };
+    data_basis(tri, SplitRule::Incenter).map_err(|e| match e {
+        FitError::BeyondPrecision {
+            vertices,
+            height,
+            magnitude,
+        } => beyond_precision(path, vertices, height, magnitude),
+        e => anyhow::anyhow!("{}: {e}", path.display()),
+    })
+}
+
+/// The error for a triangle of data rows (0-based) finer than the coordinates resolve.
+fn beyond_precision(path: &Path, rows: [usize; 3], height: f64, magnitude: f64) -> anyhow::Error {
+    let [a, b, c] = rows.map(|r| r + 1);
+    anyhow::anyhow!(
+        "{}: rows {a}, {b} and {c} make a triangle only {height:.1e} high, too fine for coordinates of magnitude {magnitude:.1e} (spaced {:.1e} apart in floating point): subtract an origin from x and y, e.g. their minimum, and fit again",
+        path.display(),
+        magnitude * f64::EPSILON
+    )
+}
+
 /// Warns (without failing) that groups of nearly coincident rows were merged, naming them.
-fn warn_merged(points: &[Point2<f64>], groups: &[Vec<usize>]) {
+fn warn_merged(points: &[Point2<f64>], groups: &[Vec<usize>], distance: f64) {
     for g in groups.iter().take(NAMED) {
         let spread = g
             .iter()
@@ -373,7 +473,7 @@ fn warn_merged(points: &[Point2<f64>], groups: &[Vec<usize>]) {
             .fold(0.0, f64::max);
         let named: Vec<String> = g.iter().take(NAMED).map(|&k| (k + 1).to_string()).collect();
         eprintln!(
-            "warning: rows {}{} are only {spread:.2e} apart (under {NEAR_DUPLICATE:e} of the data's extent): merged into one point with their mean",
+            "warning: rows {}{} are only {spread:.2e} apart (under {distance:.2e}, nearly coincident for this data's extent and coordinates): merged into one point with their mean",
             named.join(" and "),
             if g.len() > NAMED { " and more" } else { "" },
         );

@@ -149,6 +149,22 @@ impl Triangle2 {
         self.point([la / s, lb / s, lc / s])
     }
 
+    /// The Euclidean distance from `p` to the closed triangle (0 inside).
+    pub fn distance_to(&self, p: Point2<f64>) -> f64 {
+        if self.contains_exact(p) {
+            return 0.0;
+        }
+        let [a, b, c] = self.v;
+        [(a, b), (b, c), (c, a)]
+            .iter()
+            .map(|&(u, v)| {
+                let e = v - u;
+                let t = ((p - u).dot(&e) / e.norm_squared()).clamp(0.0, 1.0);
+                (p - (u + e * t)).norm()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// The centroid.
     pub fn centroid(&self) -> Point2<f64> {
         self.point([1.0 / 3.0; 3])

@@ -644,7 +644,9 @@ fn triangulation_error(e: TriangulationError) -> FormatError {
 fn ps_error(e: PsError) -> FormatError {
     let at = match &e {
         PsError::SplitPointOutside { triangle } => format!("domain.split_points[{triangle}]"),
-        PsError::EdgePointOutside { triangle, .. } => format!("domain.triangles[{triangle}]"),
+        PsError::EdgePointOutside { triangle, .. } | PsError::DegeneratePiece { triangle } => {
+            format!("domain.triangles[{triangle}]")
+        }
         PsError::DegeneratePsTriangle { vertex } | PsError::PsPointOutside { vertex, .. } => {
             format!("ps_triangles[{vertex}]")
         }

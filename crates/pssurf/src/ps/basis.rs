@@ -284,6 +284,16 @@ impl PsBasis {
         Some(self.sub_locate(loc))
     }
 
+    /// Where `p` lies in Δ*, or for a point outside the domain by at most `max_distance`,
+    /// where it lies in the extension of the nearest triangle's pieces (barycentric
+    /// coordinates slightly negative).
+    pub fn locate_near(&self, p: Point2<f64>, max_distance: f64) -> Option<SubLocation> {
+        self.locate_any(p).or_else(|| {
+            let (t, _) = self.tri.nearest_triangle(p, max_distance)?;
+            Some(self.sub_locate_in(t, self.geom[t].bary(p)))
+        })
+    }
+
     /// Where `p` lies in Δ*, for a point unrelated to the previous one (starts from the
     /// triangulation's bucket grid).
     pub fn locate_any(&self, p: Point2<f64>) -> Option<SubLocation> {

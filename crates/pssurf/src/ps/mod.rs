@@ -76,6 +76,15 @@ pub enum PsError {
         /// The common edge (vertex indices).
         edge: (usize, usize),
     },
+    /// One of the six pieces of a triangle in the refinement has (nearly) zero area, so no
+    /// polynomial piece can be evaluated on it.
+    #[error(
+        "a piece of the PS refinement of triangle {triangle} has (nearly) zero area: its split points lie too close to its edges or vertices"
+    )]
+    DegeneratePiece {
+        /// The triangle.
+        triangle: usize,
+    },
     /// A PS-triangle is degenerate or not finite.
     #[error("the PS-triangle of vertex {vertex} is degenerate")]
     DegeneratePsTriangle {

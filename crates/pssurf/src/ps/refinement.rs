@@ -93,12 +93,28 @@ impl PsRefinement {
                 Ok(l)
             })
             .collect::<Result<_, PsError>>()?;
-        Ok(PsRefinement {
+        let refinement = PsRefinement {
             rule: None,
             z,
             z_bary,
             lambda,
-        })
+        };
+        // Margins on the split points alone do not keep every piece away from zero area
+        // (an edge point 1e-9 from a vertex with Z close to that edge): check the pieces with
+        // the test evaluation uses.
+        if let Some(t) = (0..tri.triangle_count())
+            .into_par_iter()
+            .with_min_len(1024)
+            .find_first(|&t| {
+                refinement
+                    .sub_triangles(tri, t)
+                    .iter()
+                    .any(|piece| piece.is_degenerate())
+            })
+        {
+            return Err(PsError::DegeneratePiece { triangle: t });
+        }
+        Ok(refinement)
     }
 
     /// The interior points Z_j.

@@ -1,67 +1,101 @@
-//! Choosing the vertices of a coarse triangulation for a smoothing fit from the data.
-
-use std::collections::HashMap;
+//! The coarse triangulation of a smoothing fit: a regular grid over the data's bounding box.
+//!
+//! Like Dierckx's smoothing splines (FITPACK `surfit`), the fit lives on the bounding box, so
+//! every data point is inside and no triangle is a sliver or a needle, whatever the data:
+//! nearly collinear runs on the hull or nearly coincident points would make such triangles
+//! if the vertices were data points. Vertices with no data nearby are held by the energy.
 
 use nalgebra::Point2;
 
-use crate::geometry::convex_hull;
+use crate::triangulation::{COORDINATE_RESOLUTION, Triangulation};
 
-/// About `m` of the data points as vertices of a coarse triangulation: every corner of the
-/// data's convex hull (so that the triangulation covers all the data), and in each cell of
-/// a square grid over the data's bounding box the point nearest the cell's centre, with the
-/// cell size chosen (one correction step) so that about `m` cells are occupied. Returns
-/// indices into `points`, increasing; all of them when m ≥ the number of points.
-pub fn coarse_vertices(points: &[Point2<f64>], m: usize) -> Vec<usize> {
-    if m >= points.len() || points.len() < 3 {
-        return (0..points.len()).collect();
-    }
-    let index: HashMap<(u64, u64), usize> = points
-        .iter()
-        .enumerate()
-        .map(|(k, p)| ((p.x.to_bits(), p.y.to_bits()), k))
-        .collect();
-    let mut chosen: Vec<usize> = convex_hull(points)
-        .iter()
-        .filter_map(|p| index.get(&(p.x.to_bits(), p.y.to_bits())).copied())
-        .collect();
-    let lo = points
-        .iter()
-        .fold(points[0], |a, p| Point2::new(a.x.min(p.x), a.y.min(p.y)));
-    let hi = points
-        .iter()
-        .fold(points[0], |a, p| Point2::new(a.x.max(p.x), a.y.max(p.y)));
-    let extent = hi - lo;
-    let area = (extent.x.max(extent.norm() * 1e-3)) * (extent.y.max(extent.norm() * 1e-3));
-    let target = m.saturating_sub(chosen.len()).max(1);
-    let mut cell = (area / target as f64).sqrt();
-    let mut sample = grid_sample(points, lo, cell);
-    if !sample.is_empty() {
-        // Data that fill only part of the box occupy fewer cells: shrink them once.
-        cell *= (sample.len() as f64 / target as f64).sqrt();
-        sample = grid_sample(points, lo, cell);
-    }
-    chosen.extend(sample);
-    chosen.sort_unstable();
-    chosen.dedup();
-    chosen
-}
+/// The shortest side of the box relative to the longest: flatter data get a box this thick.
+const MIN_ASPECT: f64 = 1e-3;
 
-/// In each occupied grid cell of size `cell` (origin `lo`), the point nearest its centre.
-fn grid_sample(points: &[Point2<f64>], lo: Point2<f64>, cell: f64) -> Vec<usize> {
-    if !(cell > 0.0 && cell.is_finite()) {
-        return Vec::new();
+/// The smallest grid spacing relative to the largest coordinate magnitude, 2^-32 ≈ 2.3e-10
+/// (2^20 units in the last place; 2.3 mm at UTM-sized coordinates of 1e7): far from the
+/// origin, finer vertices could not be placed exactly enough.
+const MIN_SPACING: f64 = COORDINATE_RESOLUTION * (1u64 << 12) as f64;
+
+/// The bounding box of the data, thickened to an aspect ratio of at least 1 : 1000.
+fn data_box(points: &[Point2<f64>]) -> (Point2<f64>, Point2<f64>) {
+    let first = points[0];
+    let (mut lo, mut hi) = (first, first);
+    for p in points {
+        lo = Point2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point2::new(hi.x.max(p.x), hi.y.max(p.y));
     }
-    let mut best: HashMap<(i64, i64), (f64, usize)> = HashMap::new();
-    for (k, p) in points.iter().enumerate() {
-        let (fx, fy) = ((p.x - lo.x) / cell, (p.y - lo.y) / cell);
-        let key = (fx.floor() as i64, fy.floor() as i64);
-        let d = (fx - key.0 as f64 - 0.5).powi(2) + (fy - key.1 as f64 - 0.5).powi(2);
-        let e = best.entry(key).or_insert((f64::INFINITY, k));
-        if d < e.0 {
-            *e = (d, k);
+    let long = (hi.x - lo.x).max(hi.y - lo.y);
+    for axis in 0..2 {
+        let short = hi[axis] - lo[axis];
+        if short < MIN_ASPECT * long {
+            let pad = 0.5 * (MIN_ASPECT * long - short);
+            lo[axis] -= pad;
+            hi[axis] += pad;
         }
     }
-    best.into_values().map(|(_, k)| k).collect()
+    (lo, hi)
+}
+
+/// The number of grid vertices along x and y: about `m` in all, cells about square, at
+/// least 2 per side, no finer than the coordinates resolve.
+fn grid_size(lo: Point2<f64>, hi: Point2<f64>, m: usize) -> [usize; 2] {
+    let extent = hi - lo;
+    let magnitude = lo.coords.abs().max().max(hi.coords.abs().max());
+    let finest = MIN_SPACING * magnitude;
+    let m = m.max(4) as f64;
+    let nx = (m * extent.x / extent.y).sqrt().round().max(2.0);
+    let ny = (m / nx).round().max(2.0);
+    // A flat box has 2 rows: then the columns share m.
+    let nx = (m / ny).round().max(2.0).min(nx);
+    let fit = |n: f64, length: f64| -> usize {
+        let most = if finest > 0.0 {
+            (length / finest).floor() + 1.0
+        } else {
+            n
+        };
+        n.min(most).max(2.0) as usize
+    };
+    [fit(nx, extent.x), fit(ny, extent.y)]
+}
+
+/// A grid of about `m` vertices over the data's bounding box (thickened to at least 1 : 1000),
+/// each cell split into two triangles along alternating diagonals. The box's corners are the
+/// data's extremes exactly, so every point lies in a triangle. Needs at least one point with
+/// finite coordinates that are not all equal (callers check that the points are not
+/// collinear).
+pub fn coarse_triangulation(points: &[Point2<f64>], m: usize) -> Triangulation {
+    let (lo, hi) = data_box(points);
+    let [nx, ny] = grid_size(lo, hi, m);
+    let coordinate = |lo: f64, hi: f64, n: usize, i: usize| {
+        if i + 1 == n {
+            hi
+        } else {
+            lo + (hi - lo) * (i as f64 / (n - 1) as f64)
+        }
+    };
+    let mut vertices = Vec::with_capacity(nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            vertices.push(Point2::new(
+                coordinate(lo.x, hi.x, nx, i),
+                coordinate(lo.y, hi.y, ny, j),
+            ));
+        }
+    }
+    let at = |i: usize, j: usize| j * nx + i;
+    let mut triangles = Vec::with_capacity(2 * (nx - 1) * (ny - 1));
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            if (i + j) % 2 == 0 {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    Triangulation::new(vertices, triangles)
 }
 
 #[cfg(test)]
@@ -70,38 +104,53 @@ mod tests {
     use crate::test_util::*;
 
     #[test]
-    fn coarse_vertices_keep_the_hull_and_come_near_the_requested_count() {
+    fn the_grid_covers_every_point_with_about_m_vertices() {
         let mut r = rng(142);
-        for (n, m) in [(5000, 500), (20000, 300), (3000, 2900), (100, 1000)] {
-            // Points in a disc (a hull with many corners) and a dense cluster.
+        for (n, m, offset, stretch) in [
+            (5000, 500, 0.0, 1.0),
+            (20000, 300, 1e6, 3.0),
+            (3000, 2900, -40.0, 0.01),
+            (100, 1000, 0.0, 1e-9),
+        ] {
             let pts: Vec<Point2<f64>> = (0..n)
-                .map(|k| {
-                    let (a, rad) = (
-                        uniform(&mut r, 0.0, std::f64::consts::TAU),
-                        uniform(&mut r, 0.0, 1.0).sqrt(),
-                    );
-                    let s = if k % 5 == 0 { 0.05 } else { 1.0 };
-                    Point2::new(5.0 + s * rad * a.cos(), -3.0 + s * rad * a.sin())
+                .map(|_| {
+                    Point2::new(
+                        offset + uniform(&mut r, 0.0, 1.0),
+                        offset + stretch * uniform(&mut r, 0.0, 1.0),
+                    )
                 })
                 .collect();
-            let chosen = coarse_vertices(&pts, m);
+            let t = coarse_triangulation(&pts, m);
+            let got = t.vertex_count() as f64;
             assert!(
-                chosen.windows(2).all(|w| w[0] < w[1]),
-                "increasing, distinct"
+                got > 0.7 * m as f64 && got < 1.4 * m as f64,
+                "n {n}, m {m}: {got}"
             );
-            let hull = convex_hull(&pts);
-            for h in &hull {
-                assert!(chosen.iter().any(|&k| pts[k] == *h), "hull corner {h} kept");
+            for p in &pts {
+                assert!(t.locate(*p).is_some(), "{p} inside");
             }
-            if m >= n {
-                assert_eq!(chosen.len(), n);
-            } else {
-                let got = chosen.len() as f64;
-                assert!(
-                    got > 0.5 * m as f64 && got < 1.5 * m as f64 + hull.len() as f64,
-                    "n {n}, m {m}: {got}"
-                );
+            // No sliver: every triangle is half a cell of aspect ≤ 1000.
+            for k in 0..t.triangle_count() {
+                let g = t.triangle_geometry(k);
+                assert!(g.det().abs() > 1e-4 * g.diameter().powi(2), "triangle {k}");
             }
         }
+    }
+
+    #[test]
+    fn far_from_the_origin_the_grid_is_no_finer_than_the_coordinates_resolve() {
+        // 30 points spread 1e-3 at 1e9, where doubles are 1.2e-7 apart.
+        let mut r = rng(7);
+        let pts: Vec<Point2<f64>> = (0..30)
+            .map(|_| {
+                Point2::new(
+                    1e9 + uniform(&mut r, 0.0, 1e-3),
+                    1e9 + uniform(&mut r, 0.0, 1e-3),
+                )
+            })
+            .collect();
+        let t = coarse_triangulation(&pts, 400);
+        assert_eq!(t.vertex_count(), 4);
+        assert!(pts.iter().all(|p| t.locate(*p).is_some()));
     }
 }

@@ -3,7 +3,7 @@
 
 use nalgebra::Point2;
 
-use crate::triangulation::Triangulation;
+use crate::triangulation::{COORDINATE_RESOLUTION, Triangulation};
 
 /// Two data points closer than a given fraction of the data's diameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -16,19 +16,28 @@ pub struct NearDuplicate {
     pub distance: f64,
 }
 
-/// Up to `limit` pairs of distinct points closer than `relative` × the diameter of the
-/// points' bounding box, found with an R-tree (O(n log n), also when many points share a
+/// The distance below which two of these points count as nearly coincident: `relative` ×
+/// the diagonal of their bounding box, but at least [`COORDINATE_RESOLUTION`] × their
+/// largest coordinate magnitude (the finest detail the PS refinement can resolve). Zero for
+/// no points.
+pub fn near_duplicate_distance(points: &[Point2<f64>], relative: f64) -> f64 {
+    let Some(first) = points.first() else {
+        return 0.0;
+    };
+    let lo = points.iter().fold(first.coords, |a, p| a.inf(&p.coords));
+    let hi = points.iter().fold(first.coords, |a, p| a.sup(&p.coords));
+    let magnitude = lo.abs().max().max(hi.abs().max());
+    (relative * (hi - lo).norm()).max(COORDINATE_RESOLUTION * magnitude)
+}
+
+/// Up to `limit` pairs of distinct points closer than [`near_duplicate_distance`] (with
+/// `relative`), found with an R-tree (O(n log n), also when many points share a
 /// coordinate). Interpolating values at nearly coincident points makes steep, meaningless
 /// slopes; callers warn about them.
 pub fn near_duplicates(points: &[Point2<f64>], relative: f64, limit: usize) -> Vec<NearDuplicate> {
     use rstar::RTree;
     use rstar::primitives::GeomWithData;
-    let Some(first) = points.first() else {
-        return Vec::new();
-    };
-    let lo = points.iter().fold(first.coords, |a, p| a.inf(&p.coords));
-    let hi = points.iter().fold(first.coords, |a, p| a.sup(&p.coords));
-    let tol = relative * (hi - lo).norm();
+    let tol = near_duplicate_distance(points, relative);
     if !(tol > 0.0 && tol.is_finite()) || limit == 0 {
         return Vec::new();
     }

@@ -51,10 +51,77 @@ pub enum FitError {
     /// The PS basis or the spline could not be built.
     #[error(transparent)]
     Ps(#[from] PsError),
+    /// The PS refinement failed at a triangle whose detail is near the precision of the
+    /// coordinates: far from the origin, f64 cannot place its split points.
+    #[error(
+        "points {}, {} and {} make a triangle only {height:.1e} high, too fine for coordinates of magnitude {magnitude:.1e} (spaced {:.1e} apart in floating point): subtract an origin from x and y, e.g. their minimum, and fit again",
+        vertices[0], vertices[1], vertices[2], magnitude * f64::EPSILON
+    )]
+    BeyondPrecision {
+        /// The triangle's vertices (indices of the points given).
+        vertices: [usize; 3],
+        /// Its smallest height.
+        height: f64,
+        /// The largest coordinate magnitude of the points.
+        magnitude: f64,
+    },
+}
+
+/// Relative detail (a triangle's smallest height over the largest coordinate magnitude,
+/// about 4.5e5 units in the last place) below which a failure of the PS refinement is
+/// blamed on the coordinates' precision ([`FitError::BeyondPrecision`]).
+pub const PRECISION_HINT: f64 = 1e-10;
+
+/// The PS basis on `tri` with the incentre split and optimal PS-triangles; a failure at a
+/// triangle finer than [`PRECISION_HINT`] × the coordinates' magnitude is reported as
+/// [`FitError::BeyondPrecision`] (vertex indices of `tri`), with what to do.
+pub fn data_basis(tri: Triangulation, split: SplitRule) -> Result<PsBasis, FitError> {
+    let magnitude = tri
+        .vertices()
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let suspects = |e: &PsError, tri: &Triangulation| -> Vec<usize> {
+        match *e {
+            PsError::SplitPointOutside { triangle } | PsError::DegeneratePiece { triangle } => {
+                vec![triangle]
+            }
+            PsError::EdgePointOutside {
+                triangle, neighbor, ..
+            } => vec![triangle, neighbor],
+            PsError::DegeneratePsTriangle { vertex } | PsError::PsPointOutside { vertex, .. } => {
+                tri.molecule(vertex).iter().map(|&t| t as usize).collect()
+            }
+            _ => Vec::new(),
+        }
+    };
+    match PsBasis::new(tri.clone(), split, &PsTriangleChoice::Optimal) {
+        Ok(b) => Ok(b),
+        Err(e) => {
+            let finest = suspects(&e, &tri)
+                .into_iter()
+                .map(|t| (smallest_height(&tri.triangle_geometry(t)), t))
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            match finest {
+                Some((height, t)) if height < PRECISION_HINT * magnitude => {
+                    Err(FitError::BeyondPrecision {
+                        vertices: tri.triangle(t),
+                        height,
+                        magnitude,
+                    })
+                }
+                _ => Err(e.into()),
+            }
+        }
+    }
+}
+
+/// The smallest height of a triangle: twice its area over its longest edge.
+fn smallest_height(g: &crate::geometry::Triangle2) -> f64 {
+    g.det().abs() / g.diameter()
 }
 
 /// How the gradients of an interpolant were obtained.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GradientReport {
     /// The method used.
     pub method: GradientMethod,
@@ -62,6 +129,11 @@ pub struct GradientReport {
     pub widened: usize,
     /// Vertices whose local fit fell back to a plane.
     pub planar: usize,
+    /// The global method's anchor to the local estimate when the system needed one
+    /// stronger than [`ANCHOR`](super::ANCHOR) to be factorised (ill-conditioned
+    /// triangulations; see [`STRONGER_ANCHORS`](super::STRONGER_ANCHORS)); infinity when
+    /// no anchor made it factorisable and the local estimate was used.
+    pub stronger_anchor: Option<f64>,
 }
 
 /// The gradients at the vertices of `basis`'s triangulation from the values there, by
@@ -72,7 +144,7 @@ pub fn estimate_gradients_by(
     method: GradientMethod,
 ) -> Result<(Vec<Vector2<f64>>, GradientReport), FitError> {
     let local = estimate_gradients(basis.triangulation(), values)?;
-    let report = GradientReport {
+    let mut report = GradientReport {
         method,
         widened: local
             .iter()
@@ -82,11 +154,18 @@ pub fn estimate_gradients_by(
             .iter()
             .filter(|(_, k)| *k == GradientFit::Linear)
             .count(),
+        stronger_anchor: None,
     };
     let local: Vec<Vector2<f64>> = local.into_iter().map(|(g, _)| g).collect();
     let gradients = match method {
         GradientMethod::Local => local,
-        GradientMethod::Global => anchored_global_gradients(basis, values, &local)?,
+        GradientMethod::Global => {
+            let (g, eta) = anchored_global_gradients(basis, values, &local)?;
+            if eta > super::ANCHOR {
+                report.stronger_anchor = Some(eta);
+            }
+            g
+        }
     };
     Ok((gradients, report))
 }
@@ -156,11 +235,18 @@ pub fn interpolate(
     let z: Vec<f64> = order.iter().map(|&k| data.values[k]).collect();
     let data_index: Vec<usize> = order.iter().map(|&k| data.first_index[k]).collect();
     let tri = Triangulation::delaunay(ordered)?;
-    let basis = Arc::new(PsBasis::new(
-        tri,
-        SplitRule::Incenter,
-        &PsTriangleChoice::Optimal,
-    )?);
+    let basis = Arc::new(data_basis(tri, SplitRule::Incenter).map_err(|e| match e {
+        FitError::BeyondPrecision {
+            vertices,
+            height,
+            magnitude,
+        } => FitError::BeyondPrecision {
+            vertices: vertices.map(|v| data_index[v]),
+            height,
+            magnitude,
+        },
+        e => e,
+    })?);
     let (g, gradients) = estimate_gradients_by(&basis, &z, method)?;
     Ok(Interpolant {
         spline: hermite_spline(basis, &z, &g)?,

@@ -4,7 +4,10 @@
 //! gradient estimates, the PS split of the needle triangles between such points and the
 //! validity margins of the refinement all break down. Points closer than
 //! [`NEAR_DUPLICATE`] × the data's extent are therefore replaced by their mean (position
-//! and value), and the caller warns naming the rows.
+//! and value), and the caller warns naming the rows. So are points closer than
+//! [`COORDINATE_RESOLUTION`](crate::triangulation::COORDINATE_RESOLUTION) × the largest coordinate, a few
+//! units in the last place: far from the origin (1e6 + ε), the triangles between them are
+//! finer than the split points can be placed.
 
 use nalgebra::Point2;
 
@@ -28,7 +31,8 @@ pub struct MergedData {
 }
 
 /// The groups (sorted, of two or more indices, ordered by their first index) of points
-/// linked by chains of distances below `relative` × the diagonal of the bounding box;
+/// linked by chains of distances below
+/// [`near_duplicate_distance`](super::near_duplicate_distance);
 /// distinct points only (exact duplicates are the caller's to refuse). O(n log n).
 pub fn near_duplicate_groups(points: &[Point2<f64>], relative: f64) -> Vec<Vec<usize>> {
     let pairs = near_duplicates(points, relative, usize::MAX);
@@ -65,8 +69,7 @@ pub fn near_duplicate_groups(points: &[Point2<f64>], relative: f64) -> Vec<Vec<u
         .collect()
 }
 
-/// Replaces each group of nearly coincident points (closer than `relative` × the data's
-/// extent, see [`near_duplicate_groups`]) by one point at their mean with the mean value;
+/// Replaces each group of nearly coincident points (see [`near_duplicate_groups`]) by one point at their mean with the mean value;
 /// other points keep their order.
 pub fn merge_near_duplicates(points: &[Point2<f64>], values: &[f64], relative: f64) -> MergedData {
     let merged = near_duplicate_groups(points, relative);

@@ -85,6 +85,10 @@ pub enum SmoothingError {
     /// The coarse vertices cannot be triangulated.
     #[error(transparent)]
     Triangulation(#[from] crate::triangulation::TriangulationError),
+    /// The coarse triangulation has detail finer than the coordinates resolve
+    /// ([`FitError::BeyondPrecision`](super::FitError::BeyondPrecision), with data indices).
+    #[error(transparent)]
+    BeyondPrecision(super::FitError),
 }
 
 impl From<SparseError> for SmoothingError {
@@ -268,9 +272,11 @@ fn check_input(
     Ok(())
 }
 
-/// The smoothing fit of scattered data on the Delaunay triangulation of about `m` of the
-/// data points ([`coarse_vertices`](super::coarse_vertices)), with the incentre split and
-/// optimal PS-triangles. With m ≥ N every point is a vertex.
+/// The smoothing fit of scattered data on a grid of about `m` vertices over the data's
+/// bounding box ([`coarse_triangulation`](super::coarse_triangulation)), or, when m ≥ N, on
+/// the Delaunay triangulation of the data points themselves (of nearly coincident points,
+/// see [`NEAR_DUPLICATE`](super::NEAR_DUPLICATE), only the first); with the incentre split
+/// and optimal PS-triangles.
 pub fn smooth_scattered(
     points: &[Point2<f64>],
     values: &[f64],
@@ -284,17 +290,50 @@ pub fn smooth_scattered(
             crate::triangulation::TriangulationError::DuplicateVertex { first, second }.into(),
         );
     }
-    let chosen = super::coarse_vertices(points, m);
-    let vertices: Vec<Point2<f64>> = chosen.iter().map(|&k| points[k]).collect();
-    let order = crate::triangulation::morton_order(&vertices);
-    let vertices: Vec<Point2<f64>> = order.iter().map(|&k| vertices[k as usize]).collect();
+    check_input(points, values, energy, smoothing)?;
+    let basis = if m < points.len() {
+        let tri = super::coarse_triangulation(points, m);
+        super::data_basis(tri, crate::ps::SplitRule::Incenter).map_err(|e| basis_error(e, |v| v))?
+    } else {
+        vertices_at_the_data(points)?
+    };
+    smoothing_fit(Arc::new(basis), points, values, energy, smoothing, on_trial)
+}
+
+/// The PS basis on the Delaunay triangulation of the data points (of nearly coincident
+/// ones only the first).
+fn vertices_at_the_data(points: &[Point2<f64>]) -> Result<PsBasis, SmoothingError> {
+    let close = super::near_duplicate_groups(points, super::NEAR_DUPLICATE);
+    let mut dropped = vec![false; points.len()];
+    close
+        .iter()
+        .flat_map(|g| g[1..].iter())
+        .for_each(|&k| dropped[k] = true);
+    let kept: Vec<usize> = (0..points.len()).filter(|&k| !dropped[k]).collect();
+    let order =
+        crate::triangulation::morton_order(&kept.iter().map(|&k| points[k]).collect::<Vec<_>>());
+    let data_index: Vec<usize> = order.iter().map(|&k| kept[k as usize]).collect();
+    let vertices: Vec<Point2<f64>> = data_index.iter().map(|&k| points[k]).collect();
     let tri = crate::triangulation::Triangulation::delaunay(vertices)?;
-    let basis = Arc::new(PsBasis::new(
-        tri,
-        crate::ps::SplitRule::Incenter,
-        &crate::ps::PsTriangleChoice::Optimal,
-    )?);
-    smoothing_fit(basis, points, values, energy, smoothing, on_trial)
+    super::data_basis(tri, crate::ps::SplitRule::Incenter)
+        .map_err(|e| basis_error(e, |v| data_index[v]))
+}
+
+/// A failure of the PS basis as a smoothing error, with vertices renamed by `index`.
+fn basis_error(e: super::FitError, index: impl Fn(usize) -> usize) -> SmoothingError {
+    match e {
+        super::FitError::Ps(e) => SmoothingError::Ps(e),
+        super::FitError::BeyondPrecision {
+            vertices,
+            height,
+            magnitude,
+        } => SmoothingError::BeyondPrecision(super::FitError::BeyondPrecision {
+            vertices: vertices.map(index),
+            height,
+            magnitude,
+        }),
+        e => SmoothingError::Invalid(e.to_string()),
+    }
 }
 
 /// One λ tried.
@@ -383,6 +422,11 @@ struct DesignRows {
 
 impl DesignRows {
     fn new(basis: &PsBasis, points: &[Point2<f64>]) -> Result<Self, SmoothingError> {
+        // Points beside the domain by no more than a peeled boundary sliver's thickness or a
+        // dropped near-duplicate hull vertex's distance are fitted by the nearest piece's
+        // polynomial.
+        let near =
+            2.0 * super::near_duplicate_distance(points, crate::triangulation::PEEL_THICKNESS);
         // Locate along a space-filling curve: consecutive points are near each other.
         let order = crate::triangulation::morton_order(points);
         let mut located: Vec<(usize, SubLocation)> = order
@@ -396,7 +440,7 @@ impl DesignRows {
                         let k = k as usize;
                         let loc = basis
                             .locate(points[k], hint)
-                            .or_else(|| basis.locate_any(points[k]))
+                            .or_else(|| basis.locate_near(points[k], near))
                             .ok_or(SmoothingError::Outside(k))?;
                         hint = loc.triangle;
                         Ok((k, loc))
@@ -646,10 +690,7 @@ mod tests {
             .iter()
             .map(|p| (4.0 * p.x).sin() + p.y * p.y + uniform(&mut r, -0.1, 0.1))
             .collect();
-        let chosen = super::super::coarse_vertices(&pts, m);
-        let tri =
-            crate::triangulation::Triangulation::delaunay(chosen.iter().map(|&k| pts[k]).collect())
-                .unwrap();
+        let tri = super::super::coarse_triangulation(&pts, m);
         (Arc::new(PsBasis::optimal(tri).unwrap()), pts, z)
     }
 

@@ -59,8 +59,16 @@ pub(super) fn delaunay(
 /// at most 1e-8 × its edge² / 2 of area.
 pub const PEEL_THICKNESS: f64 = 1e-8;
 
+/// The finest detail, relative to the largest coordinate magnitude, that the split points of
+/// the PS refinement (rounded to the coordinates' precision) can resolve with a margin:
+/// 2^-42 ≈ 2.3e-13, 1024 units in the last place. (At UTM-sized coordinates of 1e7 this is
+/// 2.3 µm.) Boundary slivers lower than this are peeled whatever their length, and
+/// [`crate::scattered`] merges data points closer than this.
+pub const COORDINATE_RESOLUTION: f64 = 1.0 / (1u64 << 44) as f64;
+
 /// Removes thin triangles from the boundary, repeatedly: a triangle thinner than
-/// [`PEEL_THICKNESS`] with exactly one boundary edge whose opposite vertex is interior. Its
+/// [`PEEL_THICKNESS`] (or lower than [`COORDINATE_RESOLUTION`] × the largest coordinate
+/// magnitude) with exactly one boundary edge whose opposite vertex is interior. Its
 /// vertices stay in the neighbouring triangles and the domain stays a proper one (no vertex
 /// is lost, no bow-tie is made); thin triangles that cannot be peeled so are left for the
 /// caller to report.
@@ -70,10 +78,14 @@ fn peel_hull_slivers(
     mut tris: Vec<[usize; 3]>,
 ) -> (Vec<[usize; 3]>, Vec<[usize; 3]>) {
     let mut peeled = Vec::new();
+    let magnitude = points
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let resolution = COORDINATE_RESOLUTION * magnitude;
     let thin = |t: &[usize; 3]| {
         let g = Triangle2::new(points[t[0]], points[t[1]], points[t[2]]);
-        let h = g.diameter();
-        !(g.det().abs() > PEEL_THICKNESS * h * h)
+        let (h, det) = (g.diameter(), g.det().abs());
+        !(det > PEEL_THICKNESS * h * h && det > resolution * h)
     };
     loop {
         if !tris.iter().any(thin) {

@@ -222,6 +222,23 @@ impl Triangulation {
         best
     }
 
+    /// The triangle nearest to `p` within `max_distance` (0 when `p` is inside it) and that
+    /// distance; `None` when every triangle is farther. For points just outside the domain,
+    /// e.g. data beside a boundary sliver that was left out.
+    pub fn nearest_triangle(&self, p: Point2<f64>, max_distance: f64) -> Option<(usize, f64)> {
+        use rstar::AABB;
+        let r = max_distance;
+        let window = AABB::from_corners([p.x - r, p.y - r], [p.x + r, p.y + r]);
+        self.rtree()
+            .locate_in_envelope_intersecting(window)
+            .map(|cand| {
+                let t = cand.data as usize;
+                (t, self.triangle_geometry(t).distance_to(p))
+            })
+            .filter(|&(_, d)| d <= max_distance)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
     /// The triangle containing `p`, walking from triangle `hint` across the edge with the
     /// most negative barycentric coordinate; cheap when `p` is near `hint` (as for
     /// consecutive points of a grid). Falls back to the R-tree when the walk reaches the

@@ -6,7 +6,7 @@ mod error;
 mod locate;
 mod validate;
 
-pub use delaunay::PEEL_THICKNESS;
+pub use delaunay::{COORDINATE_RESOLUTION, PEEL_THICKNESS};
 pub use error::TriangulationError;
 pub use locate::{Cursor, INSIDE_TOLERANCE, Location};
 
