@@ -795,3 +795,19 @@ fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
         .unwrap();
     assert!((z - 1.0).abs() < 1e-9, "{z}");
 }
+
+/// Issue 13: "a coordinate of 1e308 is reported as collinear". Coordinates beyond ±1e150
+/// (where areas overflow) are refused as out of range, naming the row, with no output.
+#[test]
+fn a_coordinate_of_1e308_is_not_reported_as_collinear() {
+    let d = tmp();
+    let out = d.path().join("never.json");
+    let data = write(d.path(), "big.csv", "x,y,z\n0,0,0\n1e308,0,1\n0,1,2\n");
+    let e = fails(&["fit", &s(&data), "-o", &s(&out)]);
+    assert!(
+        e.contains("row 2: a coordinate beyond ±1e150") && !e.contains("collinear"),
+        "{e}"
+    );
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(!out.exists());
+}

@@ -193,6 +193,11 @@ pub fn run(args: &FitArgs) -> Result<()> {
                     first + 1,
                     second + 1
                 ),
+                TriangulationError::CoordinateOutOfRange(v) => anyhow::anyhow!(
+                    "{}: row {}: a coordinate beyond ±1e150, the range pssurf supports",
+                    args.data.display(),
+                    row_of[v] + 1
+                ),
                 e => anyhow::anyhow!("{}: cannot triangulate: {e}", args.data.display()),
             })?,
     };

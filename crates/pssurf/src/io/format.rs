@@ -626,7 +626,9 @@ fn check_count(field: &str, found: usize, n: usize) -> Result<(), FormatError> {
 fn triangulation_error(e: TriangulationError) -> FormatError {
     use TriangulationError as E;
     let at = match &e {
-        E::NonFiniteVertex(i) | E::UnusedVertex(i) => format!("domain.vertices[{i}]"),
+        E::NonFiniteVertex(i) | E::CoordinateOutOfRange(i) | E::UnusedVertex(i) => {
+            format!("domain.vertices[{i}]")
+        }
         E::DuplicateVertex { second, .. } => format!("domain.vertices[{second}]"),
         E::NonManifoldVertex { vertex } => format!("domain.vertices[{vertex}]"),
         E::IndexOutOfRange { triangle, .. }

@@ -12,12 +12,7 @@ use crate::geometry::Triangle2;
 pub(super) fn delaunay(
     points: Vec<Point2<f64>>,
 ) -> Result<(Triangulation, Vec<[usize; 3]>), TriangulationError> {
-    if let Some(i) = points
-        .iter()
-        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
-    {
-        return Err(TriangulationError::NonFiniteVertex(i));
-    }
+    super::validate::check_coordinates(&points)?;
     // Coincident points would be merged silently by spade; report them instead.
     super::validate::check_duplicates(&points)?;
     let sp: Vec<spade::Point2<f64>> = points

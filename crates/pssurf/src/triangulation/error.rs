@@ -30,6 +30,12 @@ pub enum TriangulationError {
     /// ```
     #[error("vertex {0} has a coordinate that is not a finite number")]
     NonFiniteVertex(usize),
+    /// A coordinate lies beyond ±[`MAX_COORDINATE`](super::MAX_COORDINATE), where areas and
+    /// squared lengths would overflow.
+    #[error(
+        "vertex {0} has a coordinate beyond ±1e150, the range pssurf supports (areas and squared lengths must stay finite)"
+    )]
+    CoordinateOutOfRange(usize),
     /// Two vertices have the same coordinates.
     ///
     /// ```

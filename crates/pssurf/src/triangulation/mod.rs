@@ -8,6 +8,10 @@ mod validate;
 
 pub use delaunay::{COORDINATE_RESOLUTION, PEEL_THICKNESS};
 pub use error::TriangulationError;
+
+/// The largest coordinate magnitude of a vertex: products of two coordinate differences
+/// (areas, squared lengths, orientation tests) stay far from overflow (1e300 < 1.8e308).
+pub const MAX_COORDINATE: f64 = 1e150;
 pub use locate::{Cursor, INSIDE_TOLERANCE, Location};
 
 use std::sync::OnceLock;

@@ -234,3 +234,26 @@ fn delaunay_peels_thin_hull_slivers_without_losing_vertices_or_making_bow_ties()
     assert_eq!(t.vertex_count(), 5);
     assert_eq!(t.triangle_count() + peeled.len(), 5);
 }
+
+#[test]
+fn coordinates_beyond_the_supported_range_are_refused() {
+    for big in [1e151, 1e200, 1e308, -9e307] {
+        let v = vec![p(0.0, 0.0), p(big, 0.0), p(0.0, 1.0)];
+        assert_eq!(
+            Triangulation::try_new(v.clone(), vec![[0, 1, 2]]).unwrap_err(),
+            TriangulationError::CoordinateOutOfRange(1)
+        );
+        assert_eq!(
+            Triangulation::delaunay(v).unwrap_err(),
+            TriangulationError::CoordinateOutOfRange(1)
+        );
+    }
+    // At the limit itself, areas stay finite and the triangulation is valid.
+    let v = vec![
+        p(-MAX_COORDINATE, 0.0),
+        p(MAX_COORDINATE, 0.0),
+        p(0.0, MAX_COORDINATE),
+    ];
+    let t = Triangulation::try_new(v, vec![[0, 1, 2]]).unwrap();
+    assert!(t.triangle_geometry(0).det().is_finite());
+}

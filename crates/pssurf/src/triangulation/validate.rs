@@ -24,12 +24,7 @@ pub(super) fn build(
     if n >= NO_NEIGHBOR as usize || triangles.len() >= NO_NEIGHBOR as usize {
         return Err(E::TooLarge(n.max(triangles.len())));
     }
-    if let Some(i) = vertices
-        .iter()
-        .position(|v| !(v.x.is_finite() && v.y.is_finite()))
-    {
-        return Err(E::NonFiniteVertex(i));
-    }
+    check_coordinates(&vertices)?;
     check_duplicates(&vertices)?;
     let mut tris = check_triangles(&vertices, &triangles)?;
     check_duplicate_triangles(&tris)?;
@@ -123,6 +118,19 @@ fn orient_counter_clockwise(vertices: &[Point2<f64>], tris: &mut [[u32; 3]]) -> 
     if !first {
         for t in tris.iter_mut() {
             t.swap(1, 2);
+        }
+    }
+    Ok(())
+}
+
+/// Every coordinate finite and within ±[`MAX_COORDINATE`](super::MAX_COORDINATE).
+pub(super) fn check_coordinates(vertices: &[Point2<f64>]) -> Result<(), E> {
+    for (i, v) in vertices.iter().enumerate() {
+        if !(v.x.is_finite() && v.y.is_finite()) {
+            return Err(E::NonFiniteVertex(i));
+        }
+        if !(v.x.abs() <= super::MAX_COORDINATE && v.y.abs() <= super::MAX_COORDINATE) {
+            return Err(E::CoordinateOutOfRange(i));
         }
     }
     Ok(())
