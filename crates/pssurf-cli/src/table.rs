@@ -15,6 +15,14 @@ pub struct Table {
 impl Table {
     /// Reads a CSV file whose first line names the columns; every cell must be a finite number.
     pub fn read(path: &Path) -> Result<Table> {
+        Self::read_columns(path, None)
+    }
+
+    /// Reads a CSV file whose first line names the columns; the cells of the columns named in
+    /// `used` (case-insensitive; all columns when `None`) must be finite numbers, the others
+    /// are not read (they hold NaN). Duplicate column names and a header that is not
+    /// comma-separated are errors.
+    pub fn read_columns(path: &Path, used: Option<&[&str]>) -> Result<Table> {
         let mut rdr = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
@@ -25,6 +33,11 @@ impl Table {
             .with_context(|| format!("{}: cannot read the header line", path.display()))?
             .iter()
             .map(|h| h.to_string())
+            .collect();
+        check_headers(path, &headers)?;
+        let read: Vec<bool> = headers
+            .iter()
+            .map(|h| used.is_none_or(|u| u.iter().any(|n| h.eq_ignore_ascii_case(n))))
             .collect();
         let mut rows = Vec::new();
         for (k, rec) in rdr.records().enumerate() {
@@ -39,17 +52,25 @@ impl Table {
                 );
             }
             let mut vals = Vec::with_capacity(rec.len());
-            for (cell, name) in rec.iter().zip(&headers) {
+            for ((cell, name), &wanted) in rec.iter().zip(&headers).zip(&read) {
+                if !wanted {
+                    vals.push(f64::NAN);
+                    continue;
+                }
                 let v: f64 = cell.parse().map_err(|_| {
                     anyhow::anyhow!(
-                        "{}: row {row}, column {name}: `{cell}` is not a number",
-                        path.display()
+                        "{}: row {row}, column {}: `{}` is not a number",
+                        path.display(),
+                        short(name),
+                        short(cell)
                     )
                 })?;
                 if !v.is_finite() {
                     bail!(
-                        "{}: row {row}, column {name}: `{cell}` is not a finite number",
-                        path.display()
+                        "{}: row {row}, column {}: `{}` is not a finite number",
+                        path.display(),
+                        short(name),
+                        short(cell)
                     );
                 }
                 vals.push(v);
@@ -70,7 +91,41 @@ impl Table {
     }
 }
 
-/// Reads triangles as rows `i,j,k` of zero-based vertex indices, with or without a header.
+/// Refuses repeated column names (case-insensitive) and a one-column header that holds tabs
+/// or semicolons (a file separated by something other than commas).
+fn check_headers(path: &Path, headers: &[String]) -> Result<()> {
+    if let [only] = headers
+        && (only.contains('\t') || only.contains(';'))
+    {
+        bail!(
+            "{}: columns must be separated by commas (the header is `{}`)",
+            path.display(),
+            short(only)
+        );
+    }
+    for (k, h) in headers.iter().enumerate() {
+        if headers[..k].iter().any(|g| g.eq_ignore_ascii_case(h)) {
+            bail!(
+                "{}: the column name `{}` appears twice",
+                path.display(),
+                short(h)
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A cell or name cut to its first 40 characters for a message.
+pub fn short(text: &str) -> String {
+    const MAX: usize = 40;
+    match text.char_indices().nth(MAX) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
+}
+
+/// Reads triangles as rows `i,j,k` of zero-based vertex indices, with or without a header
+/// (a first line with a letter in it).
 pub fn read_triangles(path: &Path, vertex_count: usize) -> Result<Vec<[usize; 3]>> {
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(false)
@@ -94,7 +149,9 @@ pub fn read_triangles(path: &Path, vertex_count: usize) -> Result<Vec<[usize; 3]
                 }
                 out.push([v[0], v[1], v[2]]);
             }
-            _ if k == 0 => continue, // a header line
+            _ if k == 0 && rec.iter().any(|c| c.chars().any(|ch| ch.is_alphabetic())) => {
+                continue; // a header line
+            }
             _ => bail!(
                 "{}: line {} is not three vertex indices `i,j,k`",
                 path.display(),

@@ -763,7 +763,10 @@ fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
     for r in ["1", "2", "3"] {
         assert!(err.contains(r), "{err}");
     }
-    assert!(err.contains("fitted 4 points (2 triangles"), "{err}");
+    assert!(
+        err.contains("fitted 4 rows on 4 vertices (2 triangles"),
+        "{err}"
+    );
     ok(&["info", &s(&out)]);
     // Rows 2 and 6 are 1e-12 apart.
     let data = write(
@@ -780,7 +783,7 @@ fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
         ),
         "{err}"
     );
-    assert!(err.contains("fitted 5 points"), "{err}");
+    assert!(err.contains("fitted 6 rows on 5 vertices"), "{err}");
     // The merged vertex carries the mean of the rows' values, (1 + 1) / 2, exactly.
     let pts = write(d.path(), "at.csv", "x,y\n1.0000000000005,0\n");
     let at = ok(&["eval", &s(&out), "--at", &s(&pts)]);
@@ -796,7 +799,7 @@ fn fit_warns_about_nearly_duplicate_and_nearly_collinear_rows() {
     assert!((z - 1.0).abs() < 1e-9, "{z}");
 }
 
-/// Issue 13: "a coordinate of 1e308 is reported as collinear". Coordinates beyond ±1e150
+/// Issue 13: "a coordinate of 1e308 is reported as collinear". Coordinates beyond ±1e60
 /// (where areas overflow) are refused as out of range, naming the row, with no output.
 #[test]
 fn a_coordinate_of_1e308_is_not_reported_as_collinear() {
@@ -805,9 +808,87 @@ fn a_coordinate_of_1e308_is_not_reported_as_collinear() {
     let data = write(d.path(), "big.csv", "x,y,z\n0,0,0\n1e308,0,1\n0,1,2\n");
     let e = fails(&["fit", &s(&data), "-o", &s(&out)]);
     assert!(
-        e.contains("row 2: a coordinate beyond ±1e150") && !e.contains("collinear"),
+        e.contains("row 2: a coordinate outside the range") && !e.contains("collinear"),
         "{e}"
     );
     assert_eq!(e.trim_end().lines().count(), 1, "{e}");
     assert!(!out.exists());
+    // The smoothing fit too (its grid would have panicked on 1e152).
+    let data = write(
+        d.path(),
+        "big2.csv",
+        "x,y,z\n0,0,0\n1e152,0,1\n0,1e152,2\n1e152,1e152,3\n5e151,5e151,1\n",
+    );
+    // And tiny nonzero ones, which the Delaunay triangulation cannot take (they were
+    // "collinear or too few" too).
+    let tiny = write(
+        d.path(),
+        "tiny.csv",
+        "x,y,z\n0,0,0\n1,0,1\n1e-100,0.5,1\n0,1,2\n1,1,3\n",
+    );
+    let e = fails(&["fit", &s(&tiny), "-o", &s(&out)]);
+    assert!(e.contains("row 3: a coordinate outside the range"), "{e}");
+    for m in ["3", "100"] {
+        let e = fails(&["fit", &s(&data), "-o", &s(&out), "--approximate", m]);
+        assert!(e.contains("row 2: a coordinate outside the range"), "{e}");
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    }
+    assert!(!out.exists());
+}
+
+/// Found by trying `fit` as a careless user: each input gets one clear line naming the cause.
+#[test]
+fn careless_inputs_to_fit_get_one_clear_line() {
+    let d = tmp();
+    let out = d.path().join("never.json");
+    let long = "9".repeat(100_000);
+    let cases: Vec<(String, &str)> = vec![
+        // A repeated column name (the first `z` used to be taken silently).
+        (
+            s(&write(
+                d.path(),
+                "dup.csv",
+                "x,y,z,Z\n0,0,0,1\n1,0,1,1\n0,1,1,1\n",
+            )),
+            "the column name `Z` appears twice",
+        ),
+        // Tabs instead of commas (used to complain about a number).
+        (
+            s(&write(
+                d.path(),
+                "tab.csv",
+                "x\ty\tz\n0\t0\t1\n1\t0\t1\n0\t1\t2\n",
+            )),
+            "columns must be separated by commas",
+        ),
+        // A huge cell is shortened in the message.
+        (
+            s(&write(
+                d.path(),
+                "long.csv",
+                &format!("x,y,z\n0,0,1\n1,0,{long}x\n0,1,2\n"),
+            )),
+            "is not a number",
+        ),
+    ];
+    for (file, want) in cases {
+        let e = fails(&["fit", &file, "-o", &s(&out)]);
+        assert!(e.contains(want), "{file}: {e}");
+        assert_eq!(e.trim_end().lines().count(), 1, "{file}: {e}");
+        assert!(e.len() < 300, "{file}: {} bytes", e.len());
+    }
+    // A bad first line of a triangles file is an error, not a header skipped silently.
+    let data = write(d.path(), "q.csv", "x,y,z\n0,0,0\n1,0,1\n1,1,2\n0,1,1\n");
+    let tris = write(d.path(), "t.csv", "3,0,-4\n0,1,2\n");
+    let e = fails(&["fit", &s(&data), "--triangles", &s(&tris), "-o", &s(&out)]);
+    assert!(e.contains("line 1 is not three vertex indices"), "{e}");
+    assert!(!out.exists());
+    // Columns `fit` does not use may hold text.
+    let data = write(
+        d.path(),
+        "named.csv",
+        "x,y,z,name\n0,0,0,a\n1,0,1,b\n1,1,2,c\n0,1,1,d\n",
+    );
+    ok(&["fit", &s(&data), "-o", &s(&out)]);
+    ok(&["info", &s(&out)]);
 }

@@ -239,7 +239,7 @@ fn gradients_do_not_explode_on_nearly_gridded_data() {
         for delta in [1e-12, 1e-9, 1e-6, 1e-3] {
             let e = grid_error(delta, method);
             assert!(
-                e < 3.0 * unperturbed,
+                e < 2.0 * unperturbed,
                 "{method:?}, δ = {delta:e}: max error {e:.3e}, unperturbed {unperturbed:.3e}"
             );
         }
@@ -338,8 +338,9 @@ fn random_adversarial_set(
         .collect()
 }
 
-/// The outcome of fitting one set: written and reloaded (`Ok(true)`), refused because the
-/// data's detail is beyond its coordinates' precision (`Ok(false)`), or a failure.
+/// The outcome of fitting one set: written and reloaded, or refused as nearly collinear
+/// (`Ok(true)`); refused because the data's detail is beyond its coordinates' precision
+/// (`Ok(false)`, by the interpolation or the smoothing fit); or a failure.
 fn fit_or_refuse(pts: &[Point2<f64>], method: GradientMethod) -> Result<bool, String> {
     let mut unique = pts.to_vec();
     unique.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
@@ -357,7 +358,7 @@ fn fit_or_refuse(pts: &[Point2<f64>], method: GradientMethod) -> Result<bool, St
         })
         .collect();
     if method == GradientMethod::Global {
-        // The smoothing fit on half the points as vertices, once per set.
+        // The smoothing fit on a grid of about half as many vertices, once per set.
         let m = (unique.len() / 2).max(3);
         match smooth_scattered(
             &unique,
@@ -370,16 +371,20 @@ fn fit_or_refuse(pts: &[Point2<f64>], method: GradientMethod) -> Result<bool, St
             Ok(fit) => round_trip(&fit.spline).map(|_| ())?,
             Err(
                 SmoothingError::Triangulation(TriangulationError::CollinearPoints)
-                | SmoothingError::Undetermined(..)
-                | SmoothingError::BeyondPrecision(_),
-            ) => {}
+                | SmoothingError::Undetermined(..),
+            ) if nearly_collinear(&unique) => {}
+            Err(SmoothingError::BeyondPrecision(_)) => return Ok(false),
             Err(e) => return Err(format!("no smoothing fit: {e}")),
         }
     }
     match interpolate(&unique, &z, method) {
         Ok(fit) => round_trip(&fit.spline).map(|_| true),
         // Refusing is allowed when the points are (nearly) collinear…
-        Err(FitError::Triangulation(TriangulationError::CollinearPoints)) => Ok(true),
+        Err(FitError::Triangulation(TriangulationError::CollinearPoints))
+            if nearly_collinear(&unique) =>
+        {
+            Ok(true)
+        }
         // … or finer than their coordinates resolve (which the error says).
         Err(FitError::BeyondPrecision {
             height, magnitude, ..
@@ -389,6 +394,25 @@ fn fit_or_refuse(pts: &[Point2<f64>], method: GradientMethod) -> Result<bool, St
         }
         Err(e) => Err(format!("no fit: {e}")),
     }
+}
+
+/// Fewer than 3 points, or all within 1e-6 × their extent of the line through the first
+/// point and the one farthest from it (after peeling slivers thinner than 1e-8 layer by
+/// layer, nothing may be left of such sets).
+fn nearly_collinear(pts: &[Point2<f64>]) -> bool {
+    if pts.len() < 3 {
+        return true;
+    }
+    let p0 = pts[0];
+    let far = pts
+        .iter()
+        .copied()
+        .max_by(|a, b| (a - p0).norm().total_cmp(&(b - p0).norm()))
+        .unwrap();
+    let axis = far - p0;
+    let length = axis.norm();
+    pts.iter()
+        .all(|q| ((q - p0).perp(&axis) / length).abs() <= 1e-6 * length)
 }
 
 /// Every adversarial set either fits into a surface that loads again, or is refused as
@@ -429,5 +453,9 @@ fn random_adversarial_sets_fit_and_reload() {
         "{refused} of {} fits refused as beyond precision ({far_from_origin} sets beyond 1e6)",
         2 * cases
     );
-    assert!(refused <= far_from_origin, "{refused} refusals");
+    // Measured: 4 of 24,000 fits on 12,000 sets; allow a few in a thousand.
+    assert!(
+        refused <= 2 + cases / 250,
+        "{refused} refusals in {cases} sets"
+    );
 }

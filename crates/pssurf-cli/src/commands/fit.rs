@@ -108,7 +108,8 @@ impl std::str::FromStr for SmoothArg {
             return Ok(SmoothArg(Smoothing::Gcv));
         }
         match s.parse::<f64>() {
-            Ok(l) if l >= 0.0 && l.is_finite() => Ok(SmoothArg(Smoothing::Fixed(l))),
+            // (+ 0.0 turns −0 into 0.)
+            Ok(l) if l >= 0.0 && l.is_finite() => Ok(SmoothArg(Smoothing::Fixed(l + 0.0))),
             _ => Err(format!("expected a finite λ ≥ 0 or `gcv`, not `{s}`")),
         }
     }
@@ -141,9 +142,10 @@ pub fn run(args: &FitArgs) -> Result<()> {
     if let Some(vertices) = &args.approximate_on {
         return approximate(args, Coarse::Given(vertices));
     }
-    let table = Table::read(&args.data)?;
+    let table = Table::read_columns(&args.data, Some(&DATA_COLUMNS))?;
     let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
     let mut points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
+    check_range(&points, &args.data)?;
     let mut rows: Vec<Vec<f64>> = table.rows.clone();
     let mut row_of: Vec<usize> = (0..points.len()).collect();
     if args.triangles.is_none() {
@@ -192,11 +194,6 @@ pub fn run(args: &FitArgs) -> Result<()> {
                     args.data.display(),
                     first + 1,
                     second + 1
-                ),
-                TriangulationError::CoordinateOutOfRange(v) => anyhow::anyhow!(
-                    "{}: row {}: a coordinate beyond ±1e150, the range pssurf supports",
-                    args.data.display(),
-                    row_of[v] + 1
                 ),
                 e => anyhow::anyhow!("{}: cannot triangulate: {e}", args.data.display()),
             })?,
@@ -251,7 +248,8 @@ pub fn run(args: &FitArgs) -> Result<()> {
     let t = basis.triangulation();
     pssurf::io::save(&Surface::from(spline), &args.output)?;
     eprintln!(
-        "fitted {} points ({} triangles{}); gradients {method}; wrote {}",
+        "fitted {} rows on {} vertices ({} triangles{}); gradients {method}; wrote {}",
+        table.rows.len(),
         t.vertex_count(),
         t.triangle_count(),
         if args.triangles.is_some() {
@@ -263,6 +261,9 @@ pub fn run(args: &FitArgs) -> Result<()> {
     );
     Ok(())
 }
+
+/// The columns of the data that `fit` reads (others may hold anything).
+const DATA_COLUMNS: [&str; 5] = ["x", "y", "z", "zx", "zy"];
 
 /// The data columns `fit` uses: x, y, z and optionally the gradient (zx, zy).
 struct Columns {
@@ -312,7 +313,7 @@ fn approximate(args: &FitArgs, coarse: Coarse) -> Result<()> {
             bail!("--approximate {m}: needs at least 3 vertices");
         }
     }
-    let table = Table::read(&args.data)?;
+    let table = Table::read_columns(&args.data, Some(&DATA_COLUMNS))?;
     let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
     if gradient.is_some() {
         eprintln!(
@@ -322,8 +323,8 @@ fn approximate(args: &FitArgs, coarse: Coarse) -> Result<()> {
     }
     let points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
     let values: Vec<f64> = table.rows.iter().map(|r| r[z]).collect();
-    let row_of: Vec<usize> = (0..points.len()).collect();
-    warn_near_duplicates(&points, &row_of);
+    // (Nearly coincident rows do no harm to a least-squares fit: no warning.)
+    check_range(&points, &args.data)?;
     let given = match coarse {
         Coarse::Given(path) => Some(Arc::new(user_coarse_basis(
             path,
@@ -379,6 +380,12 @@ fn approximate(args: &FitArgs, coarse: Coarse) -> Result<()> {
             points[k].x,
             points[k].y
         ),
+        pssurf::scattered::SmoothingError::Ps(PsError::NonFiniteCoefficient { .. }) => {
+            anyhow::anyhow!(
+                "{}: the fitted surface does not fit in floating point (values too large?)",
+                args.data.display()
+            )
+        }
         e => anyhow::anyhow!("{}: {e}", args.data.display()),
     })?;
     let t = fit.spline.basis().triangulation();
@@ -431,7 +438,7 @@ fn warn_near_duplicates(points: &[Point2<f64>], row_of: &[usize]) {
 /// The PS basis on the user's coarse triangulation: vertices `x,y` from `path`, triangles
 /// from `triangles` or else Delaunay.
 fn user_coarse_basis(path: &Path, triangles: Option<&Path>) -> Result<PsBasis> {
-    let table = Table::read(path)?;
+    let table = Table::read_columns(path, Some(&["x", "y"]))?;
     let (Some(x), Some(y)) = (table.column("x"), table.column("y")) else {
         bail!(
             "{}: needs columns x,y (found: {})",
@@ -459,6 +466,20 @@ fn user_coarse_basis(path: &Path, triangles: Option<&Path>) -> Result<PsBasis> {
     })
 }
 
+/// Refuses coordinates outside the range pssurf supports, naming the row (the table reader already refuses
+/// non-finite numbers).
+fn check_range(points: &[Point2<f64>], path: &Path) -> Result<()> {
+    match pssurf::triangulation::check_coordinates(points) {
+        Ok(()) => Ok(()),
+        Err(TriangulationError::CoordinateOutOfRange(k)) => bail!(
+            "{}: row {}: a coordinate outside the range pssurf supports (0, or 1e-42 to 1e60 in magnitude)",
+            path.display(),
+            k + 1
+        ),
+        Err(e) => bail!("{}: {e}", path.display()),
+    }
+}
+
 /// The error for a triangle of data rows (0-based) finer than the coordinates resolve.
 fn beyond_precision(path: &Path, rows: [usize; 3], height: f64, magnitude: f64) -> anyhow::Error {
     let [a, b, c] = rows.map(|r| r + 1);
@@ -477,10 +498,16 @@ fn warn_merged(points: &[Point2<f64>], groups: &[Vec<usize>], distance: f64) {
             .map(|&k| (points[k] - points[g[0]]).norm())
             .fold(0.0, f64::max);
         let named: Vec<String> = g.iter().take(NAMED).map(|&k| (k + 1).to_string()).collect();
+        let rows = match (named.as_slice(), g.len() - named.len()) {
+            ([a, b], 0) => format!("{a} and {b}"),
+            (_, 0) => {
+                let (last, rest) = named.split_last().expect("a group has two rows or more");
+                format!("{} and {last}", rest.join(", "))
+            }
+            (_, more) => format!("{} and {more} more", named.join(", ")),
+        };
         eprintln!(
-            "warning: rows {}{} are only {spread:.2e} apart (under {distance:.2e}, nearly coincident for this data's extent and coordinates): merged into one point with their mean",
-            named.join(" and "),
-            if g.len() > NAMED { " and more" } else { "" },
+            "warning: rows {rows} are only {spread:.2e} apart (under {distance:.2e}, nearly coincident for this data's extent and coordinates): merged into one point with their mean"
         );
     }
     if groups.len() > NAMED {

@@ -84,6 +84,11 @@ impl Triangle2 {
         self.det().abs() * 0.5
     }
 
+    /// The smallest height: twice the area over the longest edge.
+    pub fn min_height(&self) -> f64 {
+        self.det().abs() / self.diameter()
+    }
+
     /// The longest edge length.
     pub fn diameter(&self) -> f64 {
         (0..3)
@@ -267,6 +272,42 @@ mod tests {
             m.apply(Point2::origin())[2] + dx[2],
         ]);
         assert!((moved - Point2::new(1.0, 0.0)).norm() < 1e-13);
+    }
+
+    /// A right triangle with legs a, b, turned and moved at random: its smallest height is
+    /// the one onto the hypotenuse, ab / √(a² + b²); points at distance d beyond a leg, the
+    /// hypotenuse or the right-angle corner are d from it.
+    #[test]
+    fn min_height_and_distance_match_closed_forms_on_right_triangles() {
+        use crate::test_util::*;
+        let mut r = rng(31);
+        for _ in 0..1000 {
+            let (a, b) = (uniform(&mut r, 0.01, 10.0), uniform(&mut r, 0.01, 10.0));
+            let angle = uniform(&mut r, 0.0, std::f64::consts::TAU);
+            let shift = Vector2::new(uniform(&mut r, -5.0, 5.0), uniform(&mut r, -5.0, 5.0));
+            let (c, s) = (angle.cos(), angle.sin());
+            let place = |x: f64, y: f64| Point2::new(c * x - s * y, s * x + c * y) + shift;
+            let t = Triangle2::new(place(0.0, 0.0), place(a, 0.0), place(0.0, b));
+            let h = a * b / a.hypot(b);
+            assert!((t.min_height() - h).abs() <= 1e-13 * h.max(1.0), "{a} {b}");
+            let d = uniform(&mut r, 1e-3, 3.0);
+            let u = uniform(&mut r, 0.05, 0.95);
+            // Below the leg along x, left of the leg along y, beyond the corner.
+            assert!((t.distance_to(place(u * a, -d)) - d).abs() <= 1e-12 * (1.0 + d));
+            assert!((t.distance_to(place(-d, u * b)) - d).abs() <= 1e-12 * (1.0 + d));
+            let corner = d / 2f64.sqrt();
+            assert!((t.distance_to(place(-corner, -corner)) - d).abs() <= 1e-12 * (1.0 + d));
+            // Beyond the hypotenuse along its outward normal (b, a) / √(a² + b²).
+            let foot = (u * a, (1.0 - u) * b);
+            let n = (b / a.hypot(b), a / a.hypot(b));
+            let out = place(foot.0 + d * n.0, foot.1 + d * n.1);
+            assert!(
+                (t.distance_to(out) - d).abs() <= 1e-12 * (1.0 + d),
+                "{a} {b} {d}"
+            );
+            // Inside: zero.
+            assert_eq!(t.distance_to(place(0.25 * a, 0.25 * b)), 0.0);
+        }
     }
 
     #[test]

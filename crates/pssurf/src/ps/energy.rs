@@ -7,10 +7,12 @@
 //! - [`Energy::ThinPlate`]: ∫_Ω s_xx² + 2 s_xy² + s_yy², the thin-plate energy (thesis
 //!   5.4.3 uses its parametric form for fairing). Zero exactly on linear functions.
 //! - [`Energy::HessianJumps`]: Σ over the interior edges e of Δ* of
-//!   w_e ‖∇²s|_left − ∇²s|_right‖²_F with w_e = |e|² / (A_left + A_right), the
-//!   piecewise-quadratic counterpart of ∫ ‖∇³s‖² (a jump J over a distance d ≈
-//!   (A_left + A_right)/|e| is a third derivative J/d over an area A_left + A_right). Zero
-//!   exactly on quadratics, so minimising it reproduces them.
+//!   w_e ‖∇²s|_left − ∇²s|_right‖²_F with w_e = min(1, 4 (A_left + A_right) / |e|²): every
+//!   jump weighs alike, except across edges of pieces thin across them (4A < |e|²), whose
+//!   jumps are down-weighted in proportion to their thinness, so that slivers of the
+//!   refinement do not dominate. (A first weight, |e|² / (A_left + A_right), the scaling of
+//!   ∫ ‖∇³s‖², did the opposite on slivers and was replaced.) Zero exactly on quadratics, so
+//!   minimising it reproduces them.
 //!
 //! Both are sums of squares of linear functions of the control values: the matrices are
 //! symmetric positive semi-definite, and exact up to rounding (no quadrature).

@@ -101,7 +101,7 @@ impl PsRefinement {
         };
         // Margins on the split points alone do not keep every piece away from zero area
         // (an edge point 1e-9 from a vertex with Z close to that edge): check the pieces with
-        // the test evaluation uses.
+        // the test that evaluation uses.
         if let Some(t) = (0..tri.triangle_count())
             .into_par_iter()
             .with_min_len(1024)

@@ -7,7 +7,7 @@
 
 use nalgebra::Point2;
 
-use crate::triangulation::{COORDINATE_RESOLUTION, Triangulation};
+use crate::triangulation::{COORDINATE_RESOLUTION, Triangulation, TriangulationError};
 
 /// The shortest side of the box relative to the longest: flatter data get a box this thick.
 const MIN_ASPECT: f64 = 1e-3;
@@ -59,13 +59,30 @@ fn grid_size(lo: Point2<f64>, hi: Point2<f64>, m: usize) -> [usize; 2] {
     [fit(nx, extent.x), fit(ny, extent.y)]
 }
 
-/// A grid of about `m` vertices over the data's bounding box (thickened to at least 1 : 1000),
-/// each cell split into two triangles along alternating diagonals. The box's corners are the
-/// data's extremes exactly, so every point lies in a triangle. Needs at least one point with
-/// finite coordinates that are not all equal (callers check that the points are not
-/// collinear).
-pub fn coarse_triangulation(points: &[Point2<f64>], m: usize) -> Triangulation {
+/// The most vertices a coarse grid gets, whatever `m` asks for (2^24; `smooth_scattered`
+/// asks for fewer than the data points, so this bounds direct callers only).
+pub const MAX_COARSE_VERTICES: usize = 1 << 24;
+
+/// A grid of about `m` (at most [`MAX_COARSE_VERTICES`]) vertices over the data's bounding
+/// box, thickened to at least 1 : 1000, each cell split into two triangles along alternating
+/// diagonals. The box contains every point (its sides are the data's extremes, or lie beyond
+/// them where it was thickened), so every point lies in a triangle. Fails on no points, on
+/// coordinates outside the supported range (see
+/// [`check_coordinates`](crate::triangulation::check_coordinates)), and on points that all
+/// coincide.
+pub fn coarse_triangulation(
+    points: &[Point2<f64>],
+    m: usize,
+) -> Result<Triangulation, TriangulationError> {
+    crate::triangulation::check_coordinates(points)?;
+    if points.is_empty() {
+        return Err(TriangulationError::CollinearPoints);
+    }
     let (lo, hi) = data_box(points);
+    if !(hi.x > lo.x && hi.y > lo.y) {
+        return Err(TriangulationError::CollinearPoints);
+    }
+    let m = m.min(MAX_COARSE_VERTICES);
     let [nx, ny] = grid_size(lo, hi, m);
     let coordinate = |lo: f64, hi: f64, n: usize, i: usize| {
         if i + 1 == n {
@@ -95,7 +112,7 @@ pub fn coarse_triangulation(points: &[Point2<f64>], m: usize) -> Triangulation {
             }
         }
     }
-    Triangulation::new(vertices, triangles)
+    Triangulation::try_new(vertices, triangles)
 }
 
 #[cfg(test)]
@@ -120,7 +137,7 @@ mod tests {
                     )
                 })
                 .collect();
-            let t = coarse_triangulation(&pts, m);
+            let t = coarse_triangulation(&pts, m).unwrap();
             let got = t.vertex_count() as f64;
             assert!(
                 got > 0.7 * m as f64 && got < 1.4 * m as f64,
@@ -149,7 +166,7 @@ mod tests {
                 )
             })
             .collect();
-        let t = coarse_triangulation(&pts, 400);
+        let t = coarse_triangulation(&pts, 400).unwrap();
         assert_eq!(t.vertex_count(), 4);
         assert!(pts.iter().all(|p| t.locate(*p).is_some()));
     }

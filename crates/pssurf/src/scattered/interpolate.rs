@@ -99,7 +99,7 @@ pub fn data_basis(tri: Triangulation, split: SplitRule) -> Result<PsBasis, FitEr
         Err(e) => {
             let finest = suspects(&e, &tri)
                 .into_iter()
-                .map(|t| (smallest_height(&tri.triangle_geometry(t)), t))
+                .map(|t| (tri.triangle_geometry(t).min_height(), t))
                 .min_by(|a, b| a.0.total_cmp(&b.0));
             match finest {
                 Some((height, t)) if height < PRECISION_HINT * magnitude => {
@@ -113,11 +113,6 @@ pub fn data_basis(tri: Triangulation, split: SplitRule) -> Result<PsBasis, FitEr
             }
         }
     }
-}
-
-/// The smallest height of a triangle: twice its area over its longest edge.
-fn smallest_height(g: &crate::geometry::Triangle2) -> f64 {
-    g.det().abs() / g.diameter()
 }
 
 /// How the gradients of an interpolant were obtained.
@@ -222,6 +217,8 @@ pub fn interpolate(
     if let Some(k) = values.iter().position(|v| !v.is_finite()) {
         return Err(FitError::NonFiniteValue(k));
     }
+    // Checked in the input order, so that errors name the data points.
+    crate::triangulation::check_coordinates(points)?;
     if let Some((first, second)) = duplicate_points(points) {
         return Err(TriangulationError::DuplicateVertex { first, second }.into());
     }

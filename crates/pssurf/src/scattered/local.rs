@@ -23,7 +23,7 @@ pub enum GradientFit {
         /// The ring of neighbours used (1 = the vertices sharing a triangle).
         rings: usize,
     },
-    /// A plane fitted to the neighbours (too few for a quadratic).
+    /// A plane fitted to the neighbours (too few, or too ill-conditioned, for a quadratic).
     Linear,
 }
 

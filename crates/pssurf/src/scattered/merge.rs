@@ -11,8 +11,6 @@
 
 use nalgebra::Point2;
 
-use super::diagnostics::near_duplicates;
-
 /// Relative distance (a fraction of the diagonal of the data's bounding box) below which
 /// two distinct data points count as nearly duplicate and are merged.
 pub const NEAR_DUPLICATE: f64 = 1e-9;
@@ -31,42 +29,121 @@ pub struct MergedData {
 }
 
 /// The groups (sorted, of two or more indices, ordered by their first index) of points
-/// linked by chains of distances below
-/// [`near_duplicate_distance`](super::near_duplicate_distance);
-/// distinct points only (exact duplicates are the caller's to refuse). O(n log n).
+/// linked by chains of distances at most
+/// [`near_duplicate_distance`](super::near_duplicate_distance); distinct points only (exact
+/// duplicates are the caller's to refuse).
+///
+/// Points are binned in square cells of side tol / 2, whose members are all within tol of
+/// each other and are joined at once; two cells at most two apart are joined when any pair
+/// between them is within tol. Memory is O(n) and time O(n log n) plus, per pair of
+/// neighbouring cells not yet joined, the product of their sizes (a dense cluster costs
+/// linear time, unlike a search of every pair).
 pub fn near_duplicate_groups(points: &[Point2<f64>], relative: f64) -> Vec<Vec<usize>> {
-    let pairs = near_duplicates(points, relative, usize::MAX);
-    if pairs.is_empty() {
+    let tol = super::near_duplicate_distance(points, relative);
+    if !(tol > 0.0 && tol.is_finite()) {
         return Vec::new();
     }
-    let mut parent: Vec<usize> = (0..points.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
+    let lo = points
+        .iter()
+        .fold(points[0], |a, p| Point2::new(a.x.min(p.x), a.y.min(p.y)));
+    let side = tol / 2.0;
+    // Cell indices stay below 2 × (extent / tol) ≤ 2e9 × √2 since tol ≥ 1e-9 × the diagonal
+    // for the relative tolerances used; saturating casts keep larger ones harmless.
+    let cell_of = |p: &Point2<f64>| {
+        (
+            ((p.x - lo.x) / side).floor() as i64,
+            ((p.y - lo.y) / side).floor() as i64,
+        )
+    };
+    let mut keyed: Vec<((i64, i64), usize)> = points
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (cell_of(p), k))
+        .collect();
+    keyed.sort_unstable();
+    let mut cells: std::collections::HashMap<(i64, i64), std::ops::Range<usize>> =
+        std::collections::HashMap::new();
+    let mut start = 0;
+    for k in 1..=keyed.len() {
+        if k == keyed.len() || keyed[k].0 != keyed[start].0 {
+            cells.insert(keyed[start].0, start..k);
+            start = k;
+        }
+    }
+    let mut sets = UnionFind::new(points.len());
+    let mut any = false;
+    for (cell, range) in &cells {
+        let members = &keyed[range.clone()];
+        for w in members.windows(2) {
+            sets.join(w[0].1, w[1].1);
+            any = true;
+        }
+        // Neighbouring cells up to two away, each pair of cells visited once.
+        for dx in 0..=2i64 {
+            for dy in -2..=2i64 {
+                if dx == 0 && dy <= 0 {
+                    continue;
+                }
+                let Some(other) = cells.get(&(cell.0 + dx, cell.1 + dy)) else {
+                    continue;
+                };
+                if sets.root(members[0].1) == sets.root(keyed[other.start].1) {
+                    continue;
+                }
+                let close = members.iter().any(|&(_, a)| {
+                    keyed[other.clone()]
+                        .iter()
+                        .any(|&(_, b)| (points[a] - points[b]).norm() <= tol)
+                });
+                if close {
+                    sets.join(members[0].1, keyed[other.start].1);
+                    any = true;
+                }
+            }
+        }
+    }
+    if !any {
+        return Vec::new();
+    }
+    let roots: Vec<usize> = (0..points.len()).map(|k| sets.root(k)).collect();
+    let mut size = vec![0u32; points.len()];
+    roots.iter().for_each(|&r| size[r] += 1);
+    let mut members: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+    for (k, &r) in roots.iter().enumerate() {
+        if size[r] > 1 {
+            members.entry(r).or_default().push(k);
+        }
+    }
+    members.into_values().collect()
+}
+
+/// Disjoint sets of indices whose representative is the smallest member.
+struct UnionFind {
+    parent: Vec<usize>,
+}
+
+impl UnionFind {
+    /// n singletons.
+    fn new(n: usize) -> Self {
+        UnionFind {
+            parent: (0..n).collect(),
+        }
+    }
+
+    /// The smallest index of i's set (with path halving).
+    fn root(&mut self, mut i: usize) -> usize {
+        while self.parent[i] != i {
+            self.parent[i] = self.parent[self.parent[i]];
+            i = self.parent[i];
         }
         i
     }
-    for d in &pairs {
-        let (a, b) = (root(&mut parent, d.first), root(&mut parent, d.second));
-        // The smaller index becomes the root, so a group's root is its first index.
-        parent[a.max(b)] = a.min(b);
+
+    /// Joins the sets of a and b.
+    fn join(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.root(a), self.root(b));
+        self.parent[a.max(b)] = a.min(b);
     }
-    let mut members: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
-    for d in &pairs {
-        for i in [d.first, d.second] {
-            let r = root(&mut parent, i);
-            members.entry(r).or_default().push(i);
-        }
-    }
-    members
-        .into_values()
-        .map(|mut g| {
-            g.sort_unstable();
-            g.dedup();
-            g
-        })
-        .collect()
 }
 
 /// Replaces each group of nearly coincident points (see [`near_duplicate_groups`]) by one point at their mean with the mean value;
@@ -139,5 +216,59 @@ mod tests {
         assert!(none.merged.is_empty());
         assert_eq!(none.points, pts.to_vec());
         assert_eq!(none.first_index, (0..7).collect::<Vec<_>>());
+    }
+
+    /// The groups are the connected components of "within the tolerance", found here by
+    /// comparing every pair, on clustered random points.
+    #[test]
+    fn groups_are_the_components_of_the_closeness_graph() {
+        use crate::test_util::*;
+        let mut r = rng(5);
+        for trial in 0..40 {
+            let spread = 10f64.powf(uniform(&mut r, -12.0, -7.0));
+            let mut pts = Vec::new();
+            for _ in 0..30 {
+                let c = Point2::new(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0));
+                for _ in 0..(1 + trial % 5) {
+                    pts.push(Point2::new(
+                        c.x + uniform(&mut r, -spread, spread),
+                        c.y + uniform(&mut r, -spread, spread),
+                    ));
+                }
+            }
+            let tol = crate::scattered::near_duplicate_distance(&pts, NEAR_DUPLICATE);
+            let mut sets = UnionFind::new(pts.len());
+            for a in 0..pts.len() {
+                for b in a + 1..pts.len() {
+                    if (pts[a] - pts[b]).norm() <= tol {
+                        sets.join(a, b);
+                    }
+                }
+            }
+            let mut want: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+            for k in 0..pts.len() {
+                want.entry(sets.root(k)).or_default().push(k);
+            }
+            let want: Vec<Vec<usize>> = want.into_values().filter(|g| g.len() > 1).collect();
+            assert_eq!(
+                near_duplicate_groups(&pts, NEAR_DUPLICATE),
+                want,
+                "trial {trial}"
+            );
+        }
+    }
+
+    /// A cluster of 200,000 distinct points within the tolerance is one group, found in linear time
+    /// (every pair would be 2e10 comparisons).
+    #[test]
+    fn a_dense_cluster_is_one_group_without_comparing_every_pair() {
+        let mut pts: Vec<Point2<f64>> = (0..200_000)
+            .map(|k| Point2::new(0.5 + k as f64 * 2.3e-16, 0.5 + (k % 7) as f64 * 2.3e-16))
+            .collect();
+        pts.push(Point2::new(0.0, 0.0));
+        pts.push(Point2::new(1.0, 1.0));
+        let groups = near_duplicate_groups(&pts, NEAR_DUPLICATE);
+        assert_eq!(groups.len(), 1);
+        assert_eq!(groups[0].len(), 200_000);
     }
 }

@@ -73,7 +73,7 @@ pub enum SmoothingError {
     Undetermined(&'static str, &'static str),
     /// The normal equations are singular in floating point.
     #[error(
-        "the fit is not determined: too few points for the vertices near them; give fewer vertices (--approximate) or a larger λ"
+        "the fit is not determined: too few points for the vertices near them; give fewer vertices or a larger λ"
     )]
     Singular,
     /// The sparse solver failed otherwise.
@@ -245,14 +245,8 @@ fn check_input(
             "the value of point {k} is not finite"
         )));
     }
-    if let Some(k) = points
-        .iter()
-        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
-    {
-        return Err(SmoothingError::Invalid(format!(
-            "point {k} has a coordinate that is not finite"
-        )));
-    }
+    // Not finite, or so large that areas overflow (the data's indices: the input order).
+    crate::triangulation::check_coordinates(points)?;
     if let Smoothing::Fixed(lambda) = smoothing
         && !(lambda >= 0.0 && lambda.is_finite())
     {
@@ -285,15 +279,22 @@ pub fn smooth_scattered(
     smoothing: Smoothing,
     on_trial: &mut dyn FnMut(&Trial),
 ) -> Result<SmoothingFit, SmoothingError> {
+    check_input(points, values, energy, smoothing)?;
     if let Some((first, second)) = crate::triangulation::duplicate_points(points) {
         return Err(
             crate::triangulation::TriangulationError::DuplicateVertex { first, second }.into(),
         );
     }
-    check_input(points, values, energy, smoothing)?;
     let basis = if m < points.len() {
-        let tri = super::coarse_triangulation(points, m);
-        super::data_basis(tri, crate::ps::SplitRule::Incenter).map_err(|e| basis_error(e, |v| v))?
+        let tri = super::coarse_triangulation(points, m)?;
+        // The grid is no finer than the coordinates resolve, so this is not expected; its
+        // vertices are not data points, so say so rather than name them.
+        super::data_basis(tri, crate::ps::SplitRule::Incenter).map_err(|e| match e {
+            super::FitError::BeyondPrecision { magnitude, .. } => SmoothingError::Invalid(format!(
+                "the coarse grid is finer than coordinates of magnitude {magnitude:.1e} resolve: subtract an origin from the points"
+            )),
+            e => basis_error(e, |v| v),
+        })?
     } else {
         vertices_at_the_data(points)?
     };
@@ -670,8 +671,8 @@ mod tests {
     use super::*;
     use crate::test_util::*;
 
-    /// A smoothing problem on `n` random points of the unit square (corners included), on the
-    /// Delaunay triangulation of `m` of them.
+    /// A smoothing problem on `n` random points of the unit square (corners included), on a
+    /// grid of about `m` vertices over it.
     fn problem(n: usize, m: usize, seed: u64) -> (Arc<PsBasis>, Vec<Point2<f64>>, Vec<f64>) {
         let mut r = rng(seed);
         let mut pts = vec![
@@ -690,7 +691,7 @@ mod tests {
             .iter()
             .map(|p| (4.0 * p.x).sin() + p.y * p.y + uniform(&mut r, -0.1, 0.1))
             .collect();
-        let tri = super::super::coarse_triangulation(&pts, m);
+        let tri = super::super::coarse_triangulation(&pts, m).unwrap();
         (Arc::new(PsBasis::optimal(tri).unwrap()), pts, z)
     }
 

@@ -56,8 +56,8 @@ pub const PEEL_THICKNESS: f64 = 1e-8;
 
 /// The finest detail, relative to the largest coordinate magnitude, that the split points of
 /// the PS refinement (rounded to the coordinates' precision) can resolve with a margin:
-/// 2^-42 ≈ 2.3e-13, 1024 units in the last place. (At UTM-sized coordinates of 1e7 this is
-/// 2.3 µm.) Boundary slivers lower than this are peeled whatever their length, and
+/// 2^-44 ≈ 5.7e-14, 256 units in the last place. (At UTM-sized coordinates of 1e7 this is
+/// 0.57 µm.) Boundary slivers lower than this are peeled whatever their length, and
 /// [`crate::scattered`] merges data points closer than this.
 pub const COORDINATE_RESOLUTION: f64 = 1.0 / (1u64 << 44) as f64;
 

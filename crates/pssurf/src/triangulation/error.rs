@@ -30,10 +30,10 @@ pub enum TriangulationError {
     /// ```
     #[error("vertex {0} has a coordinate that is not a finite number")]
     NonFiniteVertex(usize),
-    /// A coordinate lies beyond ±[`MAX_COORDINATE`](super::MAX_COORDINATE), where areas and
-    /// squared lengths would overflow.
+    /// A coordinate lies beyond ±[`MAX_COORDINATE`](super::MAX_COORDINATE), or is nonzero and
+    /// smaller than [`MIN_COORDINATE`](super::MIN_COORDINATE) in magnitude.
     #[error(
-        "vertex {0} has a coordinate beyond ±1e150, the range pssurf supports (areas and squared lengths must stay finite)"
+        "vertex {0} has a coordinate outside the range pssurf supports (0, or 1e-42 to 1e60 in magnitude)"
     )]
     CoordinateOutOfRange(usize),
     /// Two vertices have the same coordinates.

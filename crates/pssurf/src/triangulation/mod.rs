@@ -8,10 +8,16 @@ mod validate;
 
 pub use delaunay::{COORDINATE_RESOLUTION, PEEL_THICKNESS};
 pub use error::TriangulationError;
+pub use validate::check_coordinates;
 
-/// The largest coordinate magnitude of a vertex: products of two coordinate differences
-/// (areas, squared lengths, orientation tests) stay far from overflow (1e300 < 1.8e308).
-pub const MAX_COORDINATE: f64 = 1e150;
+/// The largest coordinate magnitude of a vertex: within the range of the Delaunay
+/// triangulation (spade: 2^201 ≈ 3.2e60), and products of coordinate differences (areas,
+/// squared lengths, orientation tests) stay far from overflow.
+pub const MAX_COORDINATE: f64 = 1e60;
+
+/// The smallest magnitude of a nonzero coordinate: spade's Delaunay triangulation refuses
+/// nonzero coordinates below 2^-142 ≈ 1.8e-43.
+pub const MIN_COORDINATE: f64 = 1e-42;
 pub use locate::{Cursor, INSIDE_TOLERANCE, Location};
 
 use std::sync::OnceLock;

@@ -237,7 +237,7 @@ fn delaunay_peels_thin_hull_slivers_without_losing_vertices_or_making_bow_ties()
 
 #[test]
 fn coordinates_beyond_the_supported_range_are_refused() {
-    for big in [1e151, 1e200, 1e308, -9e307] {
+    for big in [1e61, 1e151, 1e308, -9e307, 1e-43, -1e-100, 5e-324] {
         let v = vec![p(0.0, 0.0), p(big, 0.0), p(0.0, 1.0)];
         assert_eq!(
             Triangulation::try_new(v.clone(), vec![[0, 1, 2]]).unwrap_err(),
@@ -254,6 +254,9 @@ fn coordinates_beyond_the_supported_range_are_refused() {
         p(MAX_COORDINATE, 0.0),
         p(0.0, MAX_COORDINATE),
     ];
-    let t = Triangulation::try_new(v, vec![[0, 1, 2]]).unwrap();
+    let t = Triangulation::try_new(v.clone(), vec![[0, 1, 2]]).unwrap();
+    assert_eq!(Triangulation::delaunay(v).unwrap().triangle_count(), 1);
+    let v = vec![p(0.0, 0.0), p(MIN_COORDINATE, 0.0), p(0.0, MIN_COORDINATE)];
+    assert_eq!(Triangulation::delaunay(v).unwrap().triangle_count(), 1);
     assert!(t.triangle_geometry(0).det().is_finite());
 }

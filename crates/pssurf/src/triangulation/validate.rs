@@ -123,13 +123,17 @@ fn orient_counter_clockwise(vertices: &[Point2<f64>], tris: &mut [[u32; 3]]) -> 
     Ok(())
 }
 
-/// Every coordinate finite and within ±[`MAX_COORDINATE`](super::MAX_COORDINATE).
-pub(super) fn check_coordinates(vertices: &[Point2<f64>]) -> Result<(), E> {
+/// Checks that every coordinate is finite and 0 or between
+/// [`MIN_COORDINATE`](super::MIN_COORDINATE) and [`MAX_COORDINATE`](super::MAX_COORDINATE) in
+/// magnitude, naming the first vertex that is not.
+pub fn check_coordinates(vertices: &[Point2<f64>]) -> Result<(), E> {
     for (i, v) in vertices.iter().enumerate() {
         if !(v.x.is_finite() && v.y.is_finite()) {
             return Err(E::NonFiniteVertex(i));
         }
-        if !(v.x.abs() <= super::MAX_COORDINATE && v.y.abs() <= super::MAX_COORDINATE) {
+        let usable =
+            |c: f64| c == 0.0 || (super::MIN_COORDINATE..=super::MAX_COORDINATE).contains(&c.abs());
+        if !(usable(v.x) && usable(v.y)) {
             return Err(E::CoordinateOutOfRange(i));
         }
     }
