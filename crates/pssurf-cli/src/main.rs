@@ -17,6 +17,7 @@ macro_rules! out {
     }};
 }
 
+mod budget;
 mod colors;
 mod commands;
 mod output;
@@ -51,6 +52,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    #[command(flatten)]
+    budget: budget::BudgetArgs,
 }
 
 /// Examples printed by `pssurf --help`, line by line.
@@ -108,7 +111,17 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(e),
+    };
+    budget::Budget::from_args(&cli.budget).install();
+    // On SIGINT or SIGTERM remove the temporary file of a write in progress (the file it
+    // would replace is untouched), then end as interrupted.
+    let _ = ctrlc::set_handler(|| {
+        pssurf::io::remove_pending_temp_files();
+        std::process::exit(130);
+    });
     let result = match &cli.command {
         Command::Fit(a) => commands::fit::run(a),
         Command::Eval(a) => commands::eval::run(a),
@@ -131,10 +144,33 @@ fn main() -> ExitCode {
         // The reader of our standard output stopped reading (`| head`): not an error.
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // One line whatever the causes hold.
+            let message = format!("{e:#}").replace(['\n', '\r'], " ");
+            eprintln!("error: {}", pssurf::text::cut_line(&message));
             ExitCode::FAILURE
         }
     }
+}
+
+/// Reports a command-line error in one line (clap's first line, without its usage hint) and
+/// exits with status 2; help and version requests print as usual.
+fn usage_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(
+        e.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        e.exit();
+    }
+    let text = e.render().to_string();
+    let first = text
+        .lines()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or("error");
+    eprintln!("{}", pssurf::text::cut_line(first));
+    ExitCode::from(2)
 }
 
 /// Whether an error comes from writing into a pipe whose reader has gone.

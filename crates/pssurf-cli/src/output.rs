@@ -1,10 +1,92 @@
-//! Writing numeric tables as CSV or NumPy `.npy`, atomically and in chunks.
+//! Writing outputs: any file atomically or to standard output (`-o -`), surfaces, and numeric
+//! tables as CSV or NumPy `.npy` in chunks.
 
 use std::io::Write;
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use npyz::WriterBuilder;
+use pssurf::io::Durability;
+
+/// Whether an output path means standard output.
+pub fn is_stdout(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// An error of the producer of an output (not of writing it), passed through unchanged.
+#[derive(Debug)]
+struct Produce(anyhow::Error);
+
+impl std::fmt::Display for Produce {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:#}", self.0)
+    }
+}
+
+impl std::error::Error for Produce {}
+
+/// Marks an error of the producer of an output (not of writing it): [`write_output`] returns
+/// it as it is instead of as a failure to write the file.
+pub fn producer_error(e: anyhow::Error) -> anyhow::Error {
+    anyhow::Error::new(Produce(e))
+}
+
+/// Writes what `fill` produces to `path`: standard output for `-`, otherwise through
+/// [`pssurf::io::atomic_write`] (a failure leaves any previous file untouched and no temporary
+/// file). Errors say which file could not be written and why, in a few words, except those
+/// `fill` marks with [`producer_error`].
+pub fn write_output(
+    path: &Path,
+    durability: Durability,
+    fill: impl FnOnce(&mut dyn Write) -> Result<()>,
+) -> Result<()> {
+    let result = if is_stdout(path) {
+        let stdout = std::io::stdout();
+        let mut lock = std::io::BufWriter::with_capacity(1 << 20, stdout.lock());
+        fill(&mut lock).and_then(|()| Ok(lock.flush()?))
+    } else {
+        pssurf::io::atomic_write(path, durability, fill)
+    };
+    result.map_err(|e| match e.downcast::<Produce>() {
+        Ok(Produce(inner)) => inner,
+        Err(e) if crate::is_broken_pipe(&e) => e,
+        Err(e) => {
+            let name = if is_stdout(path) {
+                "standard output".to_string()
+            } else {
+                path.display().to_string()
+            };
+            anyhow::anyhow!("cannot write {name}: {}", io_cause(&e))
+        }
+    })
+}
+
+/// The cause of a write error in a few words (`no space left on the device`), without the OS
+/// error number.
+fn io_cause(e: &anyhow::Error) -> String {
+    let io = e.chain().find_map(|c| c.downcast_ref::<std::io::Error>());
+    match io.map(|io| io.raw_os_error()) {
+        Some(Some(28)) => "no space left on the device".into(),
+        Some(Some(13)) => "permission denied".into(),
+        Some(Some(30)) => "the file system is read-only".into(),
+        Some(Some(122)) => "the disk quota is exceeded".into(),
+        _ => {
+            let text = format!("{e:#}");
+            match text.find(" (os error") {
+                Some(k) => text[..k].to_string(),
+                None => text,
+            }
+        }
+    }
+}
+
+/// Writes a surface file (durably: it is the user's source of truth), or to standard output.
+pub fn save_surface(surface: &pssurf::surface::Surface, path: &Path) -> Result<()> {
+    let text = pssurf::io::to_json_string(surface);
+    write_output(path, Durability::Durable, |w| {
+        Ok(w.write_all(text.as_bytes())?)
+    })
+}
 
 /// The output formats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -101,17 +183,15 @@ pub fn write_streamed(
             text: String::new(),
             bytes: Vec::new(),
         };
-        produce(&mut sink)
+        produce(&mut sink).map_err(|e| {
+            if e.chain()
+                .any(|c| c.downcast_ref::<std::io::Error>().is_some())
+            {
+                e
+            } else {
+                producer_error(e)
+            }
+        })
     };
-    match path {
-        None => {
-            let stdout = std::io::stdout();
-            let mut lock = std::io::BufWriter::new(stdout.lock());
-            run(&mut lock)?;
-            lock.flush()?;
-            Ok(())
-        }
-        Some(p) => pssurf::io::atomic_write(p, pssurf::io::Durability::Atomic, run)
-            .with_context(|| format!("cannot write {}", p.display())),
-    }
+    write_output(path.unwrap_or(Path::new("-")), Durability::Atomic, run)
 }

@@ -7,6 +7,7 @@ use anyhow::{Result, bail};
 use nalgebra::Point2;
 use pssurf::surface::{ParametricSurface, SurfaceJet, fill_rows};
 
+use crate::budget::{BASE_MEMORY, Estimate, count, mul};
 use crate::output::write_streamed;
 use crate::table::Table;
 
@@ -67,7 +68,7 @@ impl Points {
     pub fn len(&self) -> usize {
         match self {
             Points::List(v) => v.len(),
-            Points::Grid { size, .. } => size.nx * size.ny,
+            Points::Grid { size, .. } => size.nx.saturating_mul(size.ny),
         }
     }
 
@@ -160,6 +161,36 @@ fn read_points(path: &Path, functional: bool) -> Result<Vec<Point2<f64>>> {
         .collect())
 }
 
+/// What writing a table of one row per point costs: the bytes written (CSV numbers take at
+/// most 25 characters with their separator, `.npy` 8 bytes) and, when skipping points outside
+/// the domain, the rows kept in memory until their number is known.
+fn table_estimate(
+    points: &Points,
+    width: usize,
+    outside: Outside,
+    output: Option<&Path>,
+) -> Estimate {
+    let rows = points.len() as u64;
+    let per_row = match crate::output::Format::of(output) {
+        crate::output::Format::Csv => 25 * width as u64,
+        crate::output::Format::Npy => 8 * width as u64,
+    };
+    let kept = if outside == Outside::Skip {
+        mul(rows, 8 * width as u64)
+    } else {
+        0
+    };
+    Estimate {
+        what: match points {
+            Points::Grid { size, .. } => format!("a {} × {} grid", size.nx, size.ny),
+            Points::List(_) => "evaluating the points".to_string(),
+        },
+        makes: format!("{} rows", count(rows)),
+        memory: BASE_MEMORY.saturating_add(kept),
+        output: mul(rows, per_row).saturating_add(1024),
+    }
+}
+
 /// Evaluates a surface at the points and writes a table whose columns are `u, v` followed by
 /// what `fill` writes from each point's jet (`columns.len() − 2` numbers). Points outside the
 /// domain are handled by `outside`. The table is produced in chunks (evaluated in parallel)
@@ -175,6 +206,7 @@ pub fn evaluate_table<S: ParametricSurface>(
 ) -> Result<()> {
     const CHUNK: usize = 1 << 16;
     let width = columns.len();
+    table_estimate(points, width, outside, output).check()?;
     // One extra column per row flags points outside the domain.
     let wide = width + 1;
     let n = points.len();

@@ -23,6 +23,19 @@ impl Table {
     /// are not read (they hold NaN). Duplicate column names and a header that is not
     /// comma-separated are errors.
     pub fn read_columns(path: &Path, used: Option<&[&str]>) -> Result<Table> {
+        if let Ok(meta) = std::fs::metadata(path)
+            && meta.is_file()
+        {
+            // A row of w cells takes at least 2w bytes of text and at most 40 + 8w bytes of
+            // memory: at most 24 bytes per byte of file.
+            crate::budget::Estimate {
+                what: format!("reading {}", path.display()),
+                makes: format!("a file of {}", crate::budget::Bytes(meta.len())),
+                memory: crate::budget::BASE_MEMORY.saturating_add(meta.len().saturating_mul(24)),
+                output: 0,
+            }
+            .check()?;
+        }
         let mut rdr = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))

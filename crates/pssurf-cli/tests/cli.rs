@@ -409,7 +409,7 @@ fn ups_commands_reject_bad_input() {
         "denoise",
         &s(&ups),
         "--levels",
-        "0",
+        "1",
         "--threshold",
         "five",
         "-o",
@@ -428,7 +428,7 @@ fn ups_commands_reject_bad_input() {
     ]);
     assert!(e.contains("2 thresholds for 1 levels"), "{e}");
     let e = fails(&["subdivide", &s(&ups), "--times", "20", "-o", &o]);
-    assert!(e.contains("would make about"), "{e}");
+    assert!(e.contains("would need about") && e.contains("--max-memory"), "{e}");
     let e = fails(&[
         "noise",
         &s(&ups),

@@ -22,6 +22,7 @@ pub mod geometry;
 pub mod interrogate;
 #[cfg(feature = "io")]
 pub mod io;
+pub mod limits;
 pub mod mesh;
 pub mod noise;
 pub mod ps;
@@ -29,6 +30,7 @@ pub mod quadrature;
 pub mod scattered;
 pub mod sparse;
 pub mod surface;
+pub mod text;
 pub mod triangulation;
 pub mod ups;
 pub mod vector;

@@ -48,6 +48,11 @@ pub trait Vector:
     fn is_finite(&self) -> bool {
         (0..Self::DIM).all(|i| self.coord(i).is_finite())
     }
+    /// True when every coordinate is a usable control value: finite and within
+    /// ±[`MAX_VALUE`](crate::limits::MAX_VALUE).
+    fn in_range(&self) -> bool {
+        (0..Self::DIM).all(|i| crate::limits::value_ok(self.coord(i)))
+    }
 }
 
 impl Vector for f64 {

@@ -30,7 +30,7 @@ pub struct CurvatureArgs {
 
 /// Runs `pssurf curvature`.
 pub fn run(args: &CurvatureArgs) -> Result<()> {
-    let surface = pssurf::io::load(&args.surface)?;
+    let surface = crate::budget::load_surface(&args.surface)?;
     let pts = args
         .points
         .resolve(surface.domain_bounds(), surface.kind().is_functional())?;

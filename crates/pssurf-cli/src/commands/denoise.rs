@@ -37,7 +37,7 @@ pub struct DenoiseArgs {
     pub surface: PathBuf,
     /// The number of wavelet levels F (the polygon's corners must lie on the lattice of base
     /// 2^F·B; a surface subdivided F times always allows it).
-    #[arg(long, value_name = "F")]
+    #[arg(long, value_name = "F", value_parser = clap::value_parser!(u32).range(1..=40))]
     pub levels: u32,
     /// One threshold for every level and coordinate: a percentage of the level's largest
     /// coefficient (`5%`) or an absolute value (`0.01`).
@@ -83,7 +83,7 @@ pub fn parse_threshold(s: &str) -> Result<ThresholdRule> {
 
 /// Runs `pssurf denoise`.
 pub fn run(args: &DenoiseArgs) -> Result<()> {
-    let file = pssurf::io::load(&args.surface)?;
+    let file = crate::budget::load_surface(&args.surface)?;
     let u = uniform::require(&file, &args.surface, "denoise")?;
     let rules: Vec<ThresholdRule> = match (&args.threshold, args.auto, &args.per_level) {
         (Some(t), _, _) => vec![parse_threshold(t)?; args.levels as usize],
@@ -140,7 +140,7 @@ pub fn run(args: &DenoiseArgs) -> Result<()> {
         },
         100.0 * removed as f64 / total.max(1) as f64
     )?;
-    pssurf::io::save(&Surface::from(out), &args.output)?;
+    crate::output::save_surface(&Surface::from(out), &args.output)?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
 }

@@ -26,7 +26,7 @@ pub struct EvalArgs {
 
 /// Runs `pssurf eval`.
 pub fn run(args: &EvalArgs) -> Result<()> {
-    let surface = pssurf::io::load(&args.surface)?;
+    let surface = crate::budget::load_surface(&args.surface)?;
     let functional = surface.kind().is_functional();
     let pts = args.points.resolve(surface.domain_bounds(), functional)?;
     let mut columns: Vec<String> = ["u", "v", "x", "y", "z"].map(String::from).to_vec();

@@ -25,7 +25,7 @@ pub fn run(args: &FairnessArgs) -> Result<()> {
     if !(1..=40).contains(&args.degree) {
         bail!("--degree must be between 1 and 40");
     }
-    let surface = pssurf::io::load(&args.surface)?;
+    let surface = crate::budget::load_surface(&args.surface)?;
     let f = fairness(&surface, args.degree);
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&f)?)?;

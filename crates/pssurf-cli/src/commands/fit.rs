@@ -246,7 +246,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
         )
     })?;
     let t = basis.triangulation();
-    pssurf::io::save(&Surface::from(spline), &args.output)?;
+    crate::output::save_surface(&Surface::from(spline), &args.output)?;
     eprintln!(
         "fitted {} rows on {} vertices ({} triangles{}); gradients {method}; wrote {}",
         table.rows.len(),
@@ -390,7 +390,7 @@ fn approximate(args: &FitArgs, coarse: Coarse) -> Result<()> {
     })?;
     let t = fit.spline.basis().triangulation();
     let (vertices, triangles) = (t.vertex_count(), t.triangle_count());
-    pssurf::io::save(&Surface::from(fit.spline), &args.output)?;
+    crate::output::save_surface(&Surface::from(fit.spline), &args.output)?;
     eprintln!(
         "smoothing fit of {} points on {vertices} vertices ({triangles} triangles): λ = {:.3e}{}, RMS residual {:.4e}, effective degrees of freedom {:.1}{}; wrote {}",
         points.len(),

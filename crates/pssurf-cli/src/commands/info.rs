@@ -82,7 +82,7 @@ struct UniformInfo {
 
 /// Runs `pssurf info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
-    let s = pssurf::io::load(&args.surface)?;
+    let s = crate::budget::load_surface(&args.surface)?;
     let info = collect(&s, args.surface.display().to_string());
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&info)?)?;

@@ -87,6 +87,12 @@ pub fn run(what: &NewWhat) -> Result<()> {
         (None, Some(s), Some(n)) => LatticePolygon::standard(s as usize, n)?,
         _ => bail!("give --sides and --size, or --polygon"),
     };
+    crate::commands::uniform::creation_estimate(
+        "a new UPS surface".to_string(),
+        polygon.lattice_point_count(),
+        polygon.block_slots(),
+    )
+    .check()?;
     let lattice = Lattice {
         base: args.base,
         origin: Point2::origin(),
@@ -100,7 +106,7 @@ pub fn run(what: &NewWhat) -> Result<()> {
     let ups = graph_surface_from_formula(grid, kind, &f)?;
     let g = ups.grid();
     let (vertices, triangles) = (g.vertex_count(), g.triangle_count());
-    pssurf::io::save(&Surface::from(ups), &args.output)?;
+    crate::output::save_surface(&Surface::from(ups), &args.output)?;
     eprintln!(
         "created a {} UPS surface: {vertices} vertices, {triangles} triangles; wrote {}",
         match args.kind {

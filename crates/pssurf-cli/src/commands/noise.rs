@@ -44,17 +44,21 @@ pub fn run(args: &NoiseArgs) -> Result<()> {
         Distribution::Gaussian => NoiseKind::Gaussian,
     };
     let (a, seed) = (args.amplitude, args.seed);
-    let file = pssurf::io::load(&args.surface)?;
+    let file = crate::budget::load_surface(&args.surface)?;
     let out = file.with_noise(a, kind, seed).map_err(|e| {
-        anyhow::anyhow!("noise of amplitude {a:e} would make the surface invalid: {e}")
+        anyhow::anyhow!(
+            "noise of amplitude {} would make the surface invalid: {e}",
+            pssurf::text::Short(a)
+        )
     })?;
-    pssurf::io::save(&out, &args.output)?;
+    crate::output::save_surface(&out, &args.output)?;
     let name = match args.distribution {
         Distribution::Uniform => "uniform",
         Distribution::Gaussian => "Gaussian",
     };
     eprintln!(
-        "added {name} noise of amplitude {a} (seed {seed}); wrote {}",
+        "added {name} noise of amplitude {} (seed {seed}); wrote {}",
+        pssurf::text::Short(a),
         args.output.display()
     );
     Ok(())

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use pssurf::surface::Surface;
 
 use super::uniform;
@@ -22,25 +22,25 @@ pub struct SubdivideArgs {
     pub output: PathBuf,
 }
 
-/// The largest number of vertices a command may create.
-pub const MAX_VERTICES: u64 = 1 << 27;
-
 /// Runs `pssurf subdivide`.
 pub fn run(args: &SubdivideArgs) -> Result<()> {
-    let file = pssurf::io::load(&args.surface)?;
+    let file = crate::budget::load_surface(&args.surface)?;
     let u = uniform::require(&file, &args.surface, "subdivide")?;
     let before = u.grid().vertex_count() as u64;
-    let estimate = (before as f64) * 4f64.powi(args.times as i32);
-    if estimate > MAX_VERTICES as f64 {
-        bail!(
-            "{} subdivision steps would make about {:.0} vertices (at most {MAX_VERTICES} are supported)",
-            args.times,
-            estimate
-        );
-    }
+    // Each step doubles the lattice coordinates: V·4^T bounds the vertices (Pick's theorem)
+    // and 4^T the block-matrix slots.
+    let growth = 1u128
+        .checked_shl(2 * args.times.min(63))
+        .unwrap_or(u128::MAX);
+    crate::commands::uniform::creation_estimate(
+        format!("{} subdivision steps", args.times),
+        (before as u128).saturating_mul(growth),
+        (u.grid().polygon().block_slots()).saturating_mul(growth),
+    )
+    .check()?;
     let out = u.subdivide_times(args.times as usize);
     let after = out.grid().vertex_count();
-    pssurf::io::save(&Surface::from(out), &args.output)?;
+    crate::output::save_surface(&Surface::from(out), &args.output)?;
     eprintln!(
         "subdivided {} times: {before} → {after} vertices; wrote {}",
         args.times,

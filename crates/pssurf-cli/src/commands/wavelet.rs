@@ -16,7 +16,7 @@ pub struct WaveletArgs {
     #[arg(value_name = "SURF.json")]
     pub surface: PathBuf,
     /// The number of levels F.
-    #[arg(long, value_name = "F")]
+    #[arg(long, value_name = "F", value_parser = clap::value_parser!(u32).range(1..=40))]
     pub levels: u32,
     /// Write the decomposition (the coarse surface and every detail triple with its lattice
     /// coordinates) as JSON.
@@ -26,12 +26,14 @@ pub struct WaveletArgs {
 
 /// Runs `pssurf wavelet`.
 pub fn run(args: &WaveletArgs) -> Result<()> {
-    let file = pssurf::io::load(&args.surface)?;
+    let file = crate::budget::load_surface(&args.surface)?;
     let u = uniform::require(&file, &args.surface, "wavelet")?;
     let json = report(&u.wavelet_transform(args.levels)?, u.coordinate_names())?;
     if let Some(path) = &args.output {
         let text = serde_json::to_string(&json)? + "\n";
-        pssurf::io::atomic_write_bytes(path, pssurf::io::Durability::Atomic, text.as_bytes())?;
+        crate::output::write_output(path, pssurf::io::Durability::Atomic, |w| {
+            Ok(w.write_all(text.as_bytes())?)
+        })?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())

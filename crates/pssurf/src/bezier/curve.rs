@@ -74,7 +74,7 @@ impl<V: Vector> BezierCurve<V> {
                 found: 0,
             });
         }
-        if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        if let Some(i) = points.iter().position(|p| !p.in_range()) {
             return Err(BezierError::NonFiniteOrdinate(i));
         }
         Ok(BezierCurve { points })
@@ -185,7 +185,7 @@ impl<V: Vector> RationalBezierCurve<V> {
                 found: weights.len(),
             });
         }
-        if let Some(i) = weights.iter().position(|&w| !(w > 0.0 && w.is_finite())) {
+        if let Some(i) = weights.iter().position(|&w| !crate::limits::weight_ok(w)) {
             return Err(BezierError::InvalidWeight(i));
         }
         Ok(RationalBezierCurve {

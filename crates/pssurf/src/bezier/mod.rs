@@ -30,10 +30,10 @@ pub enum BezierError {
         found: usize,
     },
     /// An ordinate has a NaN or infinite coordinate.
-    #[error("ordinate {0} is not finite")]
+    #[error("ordinate {0} is not a finite number within ±1e60")]
     NonFiniteOrdinate(usize),
     /// A weight is zero, negative or not finite.
-    #[error("weight {0} must be finite and positive")]
+    #[error("weight {0} must lie between 1e-30 and 1e30")]
     InvalidWeight(usize),
     /// The domain triangle has (numerically) zero area.
     #[error("the domain triangle is degenerate")]

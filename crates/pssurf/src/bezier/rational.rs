@@ -78,7 +78,7 @@ impl<V: Vector> RationalBezierTriangle<V> {
                 found: weights.len(),
             });
         }
-        if let Some(i) = weights.iter().position(|&w| !(w > 0.0 && w.is_finite())) {
+        if let Some(i) = weights.iter().position(|&w| !crate::limits::weight_ok(w)) {
             return Err(BezierError::InvalidWeight(i));
         }
         let map = *poly.bary_map();

@@ -50,7 +50,7 @@ impl<V: Vector> BezierTriangle<V> {
                 found: points.len(),
             });
         }
-        if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        if let Some(i) = points.iter().position(|p| !p.in_range()) {
             return Err(BezierError::NonFiniteOrdinate(i));
         }
         let map = domain.bary_map().ok_or(BezierError::DegenerateDomain)?;

@@ -20,6 +20,7 @@ pub use fairness::{
     DEFAULT_QUADRATURE_DEGREE, Fairness, FairnessIntegrals, QuantityStats, fairness,
 };
 pub use sample::{
-    SampledSurface, sample_patches, sample_pieces, triangles_per_piece, vertices_per_piece,
+    SampleCounts, SampledSurface, sample_counts, sample_patches, sample_pieces,
+    triangles_per_piece, vertices_per_piece,
 };
 pub use section::{SectionCurve, SectionError, SectionOptions, plane_section};

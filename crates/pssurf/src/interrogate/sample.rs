@@ -51,6 +51,31 @@ pub fn triangles_per_piece(kind: PieceKind, level: u32) -> usize {
     }
 }
 
+/// The vertex and triangle counts of a sampled surface (see [`SampledSurface`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SampleCounts {
+    /// Mesh vertices (shared edges counted once per piece).
+    pub vertices: u64,
+    /// Mesh triangles.
+    pub triangles: u64,
+}
+
+/// The counts of sampling `pieces` pieces of shape `kind` at `level`, without allocating;
+/// `None` when they do not fit in 64 bits. Commands check these against their memory budget
+/// before calling [`sample_patches`].
+pub fn sample_counts(kind: PieceKind, pieces: usize, level: u32) -> Option<SampleCounts> {
+    let n = 1u128.checked_shl(level).filter(|&n| n <= 1 << 40)?;
+    let (v, t) = match kind {
+        PieceKind::Triangle => ((n + 1) * (n + 2) / 2, n * n),
+        PieceKind::Rectangle => ((n + 1) * (n + 1), 2 * n * n),
+    };
+    let p = pieces as u128;
+    Some(SampleCounts {
+        vertices: u64::try_from(v.checked_mul(p)?).ok()?,
+        triangles: u64::try_from(t.checked_mul(p)?).ok()?,
+    })
+}
+
 /// Sample `surface` at `level` (see [`SampledSurface`]), with curvature when asked. Runs in
 /// parallel over the pieces.
 ///

@@ -2,6 +2,45 @@
 
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The temporary files being written right now, so that a program interrupted by a signal
+/// can remove them ([`remove_pending_temp_files`]).
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Keeps a temporary file's path in [`PENDING`] while it lives.
+struct Pending(PathBuf);
+
+impl Pending {
+    fn new(path: &Path) -> Pending {
+        if let Ok(mut p) = PENDING.lock() {
+            p.push(path.to_path_buf());
+        }
+        Pending(path.to_path_buf())
+    }
+}
+
+impl Drop for Pending {
+    fn drop(&mut self) {
+        if let Ok(mut p) = PENDING.lock()
+            && let Some(k) = p.iter().position(|q| *q == self.0)
+        {
+            p.swap_remove(k);
+        }
+    }
+}
+
+/// Removes the temporary files of writes still in progress; returns how many. For a signal
+/// handler (SIGINT, SIGTERM) that is about to end the program: the files being replaced are
+/// untouched, and no `.pssurf-*.tmp` file is left behind.
+pub fn remove_pending_temp_files() -> usize {
+    let Ok(mut p) = PENDING.lock() else {
+        return 0;
+    };
+    let removed = p.iter().filter(|q| std::fs::remove_file(q).is_ok()).count();
+    p.clear();
+    removed
+}
 
 /// How much a write must survive.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,6 +79,7 @@ pub fn atomic_write<E: From<std::io::Error>>(
         .prefix(".pssurf-")
         .suffix(".tmp")
         .tempfile_in(dir)?;
+    let _pending = Pending::new(tmp.path());
     // Temporary files are private (0600); the result should have the permissions of the
     // file it replaces, or the usual 0644 for a new file.
     #[cfg(unix)]
@@ -56,8 +96,11 @@ pub fn atomic_write<E: From<std::io::Error>>(
         fill(&mut w)?;
         w.flush()?;
     }
-    if durability == Durability::Durable {
-        tmp.as_file().sync_all()?;
+    // A full disk may show only when the data is flushed to it (delayed allocation): sync
+    // before the rename in both modes, so that such a failure keeps the old file.
+    match durability {
+        Durability::Atomic => tmp.as_file().sync_data()?,
+        Durability::Durable => tmp.as_file().sync_all()?,
     }
     tmp.persist(path).map_err(|e| E::from(e.error))?;
     Ok(())
@@ -145,7 +188,19 @@ fn write_stream<E: From<std::io::Error>>(
     let mut w = BufWriter::with_capacity(1 << 20, file);
     fill(&mut w)?;
     w.flush()?;
+    // Errors a device reports only at the end (a full disk behind a FIFO reader, NFS).
+    w.get_ref().sync_data().or_else(ignore_unsupported)?;
     Ok(())
+}
+
+/// `fsync` on a pipe, terminal or character device fails with EINVAL (nothing to sync):
+/// not an error.
+fn ignore_unsupported(e: std::io::Error) -> std::io::Result<()> {
+    if e.kind() == std::io::ErrorKind::InvalidInput || e.raw_os_error() == Some(22) {
+        Ok(())
+    } else {
+        Err(e)
+    }
 }
 
 /// Writes `bytes` to `path` atomically (see [`atomic_write`]).

@@ -328,7 +328,10 @@ fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
         if ok {
             Ok(())
         } else {
-            Err(invalid(format!("{field}[{i}][{j}]"), "not a finite number"))
+            Err(invalid(
+                format!("{field}[{i}][{j}]"),
+                "not a finite number within ±1e60",
+            ))
         }
     };
     if file.kind == Kind::Functional {
@@ -336,7 +339,7 @@ fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
         check_count("control", c.len(), n)?;
         for (i, t) in c.iter().enumerate() {
             for j in 0..3 {
-                finite("control", i, j, t[j].is_finite())?;
+                finite("control", i, j, crate::limits::value_ok(t[j]))?;
             }
         }
         return Ok(PsControl::Heights(c.clone()));
@@ -348,7 +351,12 @@ fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
     check_count("control_points", c.len(), n)?;
     for (i, t) in c.iter().enumerate() {
         for j in 0..3 {
-            finite("control_points", i, j, t[j].iter().all(|x| x.is_finite()))?;
+            finite(
+                "control_points",
+                i,
+                j,
+                t[j].iter().all(|&x| crate::limits::value_ok(x)),
+            )?;
         }
     }
     let points: Vec<[Vector3<f64>; 3]> = c
@@ -362,7 +370,7 @@ fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
     check_count("weights", w.len(), n)?;
     for (i, t) in w.iter().enumerate() {
         for j in 0..3 {
-            if !(t[j] > 0.0 && t[j].is_finite()) {
+            if !crate::limits::weight_ok(t[j]) {
                 return Err(invalid(
                     format!("weights[{i}][{j}]"),
                     PsError::InvalidWeight {
@@ -573,8 +581,16 @@ fn build_bezier(file: &FileV1) -> Result<Surface, FormatError> {
         }
         _ => {}
     }
-    if !b.triangle.iter().flatten().all(|x| x.is_finite()) {
-        return Err(invalid("bezier.triangle", "coordinates must be finite"));
+    if !b.triangle.iter().flatten().all(|&x| {
+        x.is_finite()
+            && (x == 0.0
+                || (crate::limits::MIN_COORDINATE..=crate::limits::MAX_COORDINATE)
+                    .contains(&x.abs()))
+    }) {
+        return Err(invalid(
+            "bezier.triangle",
+            "coordinates must be finite, and 0 or between 1e-42 and 1e60 in magnitude",
+        ));
     }
     if b.degree > MAX_BEZIER_DEGREE {
         return Err(invalid(
@@ -649,7 +665,9 @@ fn ps_error(e: PsError) -> FormatError {
         PsError::EdgePointOutside { triangle, .. } | PsError::DegeneratePiece { triangle } => {
             format!("domain.triangles[{triangle}]")
         }
-        PsError::DegeneratePsTriangle { vertex } | PsError::PsPointOutside { vertex, .. } => {
+        PsError::DegeneratePsTriangle { vertex }
+        | PsError::PsTriangleOutOfRange { vertex }
+        | PsError::PsPointOutside { vertex, .. } => {
             format!("ps_triangles[{vertex}]")
         }
         PsError::NonFiniteCoefficient { vertex, index } => format!("control[{vertex}][{index}]"),

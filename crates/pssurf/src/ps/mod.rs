@@ -85,9 +85,17 @@ pub enum PsError {
         /// The triangle.
         triangle: usize,
     },
-    /// A PS-triangle is degenerate or not finite.
+    /// A PS-triangle is degenerate.
     #[error("the PS-triangle of vertex {vertex} is degenerate")]
     DegeneratePsTriangle {
+        /// The vertex.
+        vertex: usize,
+    },
+    /// A PS-triangle has a coordinate that is not finite or beyond ±1e60.
+    #[error(
+        "the PS-triangle of vertex {vertex} has a coordinate that is not a finite number within ±1e60"
+    )]
+    PsTriangleOutOfRange {
         /// The vertex.
         vertex: usize,
     },
@@ -101,7 +109,7 @@ pub enum PsError {
         point: [f64; 2],
     },
     /// A control value is NaN or infinite.
-    #[error("control value {index} of vertex {vertex} is not finite")]
+    #[error("control value {index} of vertex {vertex} is not a finite number within ±1e60")]
     NonFiniteCoefficient {
         /// The vertex.
         vertex: usize,
@@ -109,7 +117,7 @@ pub enum PsError {
         index: usize,
     },
     /// A NURPS weight is zero, negative or not finite.
-    #[error("weight {index} of vertex {vertex} is {weight}; weights must be finite and positive")]
+    #[error("weight {index} of vertex {vertex} is {}; weights must lie between 1e-30 and 1e30", crate::text::Short(*weight))]
     InvalidWeight {
         /// The vertex.
         vertex: usize,

@@ -47,13 +47,16 @@ impl<V: Vector> Nurps<V> {
             }
         }
         for i in 0..n {
-            if let Some(j) = points[i].iter().position(|v| !v.is_finite()) {
+            if let Some(j) = points[i].iter().position(|v| !v.in_range()) {
                 return Err(PsError::NonFiniteCoefficient {
                     vertex: i,
                     index: j,
                 });
             }
-            if let Some(j) = weights[i].iter().position(|&w| !(w > 0.0 && w.is_finite())) {
+            if let Some(j) = weights[i]
+                .iter()
+                .position(|&w| !crate::limits::weight_ok(w))
+            {
                 return Err(PsError::InvalidWeight {
                     vertex: i,
                     index: j,
@@ -91,13 +94,13 @@ impl<V: Vector> Nurps<V> {
         points: [V; 3],
         weights: [f64; 3],
     ) -> Result<(), PsError> {
-        if let Some(j) = points.iter().position(|v| !v.is_finite()) {
+        if let Some(j) = points.iter().position(|v| !v.in_range()) {
             return Err(PsError::NonFiniteCoefficient {
                 vertex: i,
                 index: j,
             });
         }
-        if let Some(j) = weights.iter().position(|&w| !(w > 0.0 && w.is_finite())) {
+        if let Some(j) = weights.iter().position(|&w| !crate::limits::weight_ok(w)) {
             return Err(PsError::InvalidWeight {
                 vertex: i,
                 index: j,

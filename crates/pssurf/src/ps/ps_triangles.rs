@@ -202,7 +202,13 @@ fn check_ps_triangle(
     pts: &[Point2<f64>],
     rule: Containment,
 ) -> Result<Triangle2, PsError> {
-    if t.v.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) || t.is_degenerate() {
+    if t.v
+        .iter()
+        .any(|p| !(crate::limits::value_ok(p.x) && crate::limits::value_ok(p.y)))
+    {
+        return Err(PsError::PsTriangleOutOfRange { vertex: i });
+    }
+    if t.is_degenerate() {
         return Err(PsError::DegeneratePsTriangle { vertex: i });
     }
     let t = if crate::geometry::orient_exact(t.v[0], t.v[1], t.v[2]) < 0.0 {

@@ -59,7 +59,7 @@ impl<V: Vector> PsSpline<V> {
             });
         }
         for (i, c) in coeffs.iter().enumerate() {
-            if let Some(j) = c.iter().position(|v| !v.is_finite()) {
+            if let Some(j) = c.iter().position(|v| !v.in_range()) {
                 return Err(PsError::NonFiniteCoefficient {
                     vertex: i,
                     index: j,
@@ -120,7 +120,7 @@ impl<V: Vector> PsSpline<V> {
     /// Replaces the control values of vertex i and updates only the nets of its molecule
     /// (local control: B_i^j vanishes outside M_i).
     pub fn set_coefficients(&mut self, i: usize, c: [V; 3]) -> Result<(), PsError> {
-        if let Some(j) = c.iter().position(|v| !v.is_finite()) {
+        if let Some(j) = c.iter().position(|v| !v.in_range()) {
             return Err(PsError::NonFiniteCoefficient {
                 vertex: i,
                 index: j,

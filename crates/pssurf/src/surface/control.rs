@@ -52,11 +52,11 @@ pub enum EditError {
         /// The number of control points.
         count: usize,
     },
-    /// A coordinate is NaN or infinite.
-    #[error("control point {0} must have finite coordinates")]
+    /// A coordinate is NaN, infinite or beyond ±[`MAX_VALUE`](crate::limits::MAX_VALUE).
+    #[error("control point {0} must have finite coordinates within ±1e60")]
     NonFinite(usize),
     /// A weight is not finite and positive.
-    #[error("the weight of control point {id} is {weight}; weights must be finite and positive")]
+    #[error("the weight of control point {id} is {}; weights must lie between 1e-30 and 1e30", crate::text::Short(*weight))]
     InvalidWeight {
         /// The control point.
         id: usize,
@@ -64,7 +64,7 @@ pub enum EditError {
         weight: f64,
     },
     /// A noise amplitude that is negative or not finite.
-    #[error("the noise amplitude {0} must be a finite non-negative number")]
+    #[error("the noise amplitude {} must be a finite non-negative number", crate::text::Short(*.0))]
     InvalidAmplitude(f64),
     /// A weight other than 1 was given to a polynomial surface.
     #[error(
@@ -88,11 +88,11 @@ pub(crate) fn check_point(
     if id.0 >= count {
         return Err(EditError::NoSuchPoint { id: id.0, count });
     }
-    if !p.position.iter().all(|x| x.is_finite()) {
+    if !p.position.iter().all(|&x| crate::limits::value_ok(x)) {
         return Err(EditError::NonFinite(id.0));
     }
     if rational {
-        if !(p.weight > 0.0 && p.weight.is_finite()) {
+        if !crate::limits::weight_ok(p.weight) {
             return Err(EditError::InvalidWeight {
                 id: id.0,
                 weight: p.weight,

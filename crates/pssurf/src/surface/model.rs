@@ -229,7 +229,7 @@ impl Surface {
             return match out
                 .control_points()
                 .iter()
-                .position(|p| !p.position.iter().all(|x| x.is_finite()))
+                .position(|p| !p.position.iter().all(|&x| crate::limits::value_ok(x)))
             {
                 Some(id) => Err(EditError::NonFinite(id)),
                 None => Ok(out),

@@ -26,6 +26,29 @@ pub struct UpsGrid {
     down: Vec<bool>,
 }
 
+/// Every lattice point of the polygon must have coordinates the triangulation accepts
+/// (within ±[`MAX_COORDINATE`](crate::triangulation::MAX_COORDINATE)); the extremes of the
+/// affine lattice map over the polygon are at its corners.
+fn check_range(lattice: &Lattice, polygon: &LatticePolygon) -> Result<(), UpsError> {
+    let extent = polygon
+        .vertices()
+        .iter()
+        .map(|&c| lattice.point(c))
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let tiny = |c: f64| c != 0.0 && c.abs() < UpsGrid::MIN_SCALE;
+    let (o, b) = (lattice.origin, lattice.base);
+    if !(extent <= crate::triangulation::MAX_COORDINATE) {
+        return Err(UpsError::OutOfRange { extent });
+    }
+    if b < UpsGrid::MIN_SCALE || tiny(o.x) || tiny(o.y) {
+        return Err(UpsError::TooFine {
+            base: b,
+            origin: [o.x, o.y],
+        });
+    }
+    Ok(())
+}
+
 impl UpsGrid {
     /// The triangulation of `polygon` on `lattice`: the cells whose centroid lies inside.
     pub fn new(lattice: Lattice, polygon: LatticePolygon) -> Result<Self, UpsError> {
@@ -36,11 +59,13 @@ impl UpsGrid {
         {
             return Err(UpsError::InvalidBase(lattice.base));
         }
+        let slots = polygon.block_slots();
+        if slots > 1 << 31 {
+            return Err(UpsError::TooLarge(slots));
+        }
+        check_range(&lattice, &polygon)?;
         let (lo, hi) = polygon.bounds();
         let n = [(hi[0] - lo[0] + 1) as usize, (hi[1] - lo[1] + 1) as usize];
-        if n[0].checked_mul(n[1]).is_none_or(|c| c > 1 << 31) {
-            return Err(UpsError::TooLarge);
-        }
         let cells = n[0] * n[1];
         let mut up = vec![false; cells];
         let mut down = vec![false; cells];
@@ -56,6 +81,11 @@ impl UpsGrid {
             });
         Ok(Self::from_cells(lattice, polygon, lo, n, up, down))
     }
+
+    /// The smallest base and nonzero origin coordinate accepted: with larger values no
+    /// lattice point gets a nonzero coordinate below the triangulation's
+    /// [`MIN_COORDINATE`](crate::triangulation::MIN_COORDINATE).
+    pub const MIN_SCALE: f64 = 1e-20;
 
     fn from_cells(
         lattice: Lattice,

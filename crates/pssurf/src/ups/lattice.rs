@@ -42,6 +42,14 @@ impl Lattice {
     }
 }
 
+/// The most corners a lattice polygon may have (the simplicity check is quadratic in them).
+pub const MAX_CORNERS: usize = 4096;
+
+/// The largest lattice coordinate |i|, |j| of a polygon corner (2^40): far beyond any
+/// triangulation that fits in memory, and small enough that every product of coordinates
+/// stays exact in 128-bit integers.
+pub const MAX_LATTICE_COORDINATE: i64 = 1 << 40;
+
 /// Twice the signed area of a lattice polygon, in units of the lattice parallelogram.
 fn twice_area(v: &[LatticePoint]) -> i128 {
     let n = v.len();
@@ -78,6 +86,15 @@ impl LatticePolygon {
     ///     UpsError::EdgeOffGrid { edge: 0 });
     /// ```
     pub fn new(mut vertices: Vec<LatticePoint>) -> Result<Self, UpsError> {
+        if vertices.len() > MAX_CORNERS {
+            return Err(UpsError::TooManyCorners(vertices.len()));
+        }
+        if let Some(corner) = vertices.iter().position(|p| {
+            p.iter()
+                .any(|c| c.unsigned_abs() > MAX_LATTICE_COORDINATE as u64)
+        }) {
+            return Err(UpsError::CornerOutOfRange { corner });
+        }
         vertices.dedup();
         while vertices.len() > 1 && vertices.first() == vertices.last() {
             vertices.pop();
@@ -187,6 +204,38 @@ impl LatticePolygon {
         inside
     }
 
+    /// The number of lattice points in the closed polygon, by Pick's theorem (the lattice
+    /// coordinates (i, j) are an affine image of ℤ², so Pick applies): A + B/2 + 1 with A the
+    /// area in lattice parallelograms and B the lattice points on the boundary. This is the
+    /// vertex count of its uniform triangulation; the triangle count is 2A.
+    pub fn lattice_point_count(&self) -> u128 {
+        let twice = twice_area(&self.vertices).unsigned_abs();
+        let n = self.vertices.len();
+        let boundary: u128 = (0..n)
+            .map(|k| {
+                let (a, b) = (self.vertices[k], self.vertices[(k + 1) % n]);
+                // Edges lie on grid lines: the lattice points on one are its longest step.
+                let d = |c: usize| (b[c] as i128 - a[c] as i128).unsigned_abs();
+                d(0).max(d(1))
+            })
+            .sum();
+        (twice + boundary) / 2 + 1
+    }
+
+    /// The number of triangles of its uniform triangulation: twice the area in lattice
+    /// parallelograms.
+    pub fn triangle_count(&self) -> u128 {
+        twice_area(&self.vertices).unsigned_abs()
+    }
+
+    /// The number of slots of the block matrix that stores its triangulation: the lattice
+    /// points of the bounding box.
+    pub fn block_slots(&self) -> u128 {
+        let (lo, hi) = self.bounds();
+        let side = |c: usize| (hi[c] as i128 - lo[c] as i128 + 1).unsigned_abs();
+        side(0) * side(1)
+    }
+
     /// The bounding box in lattice coordinates: (min corner, max corner).
     pub fn bounds(&self) -> (LatticePoint, LatticePoint) {
         let mut lo = [i64::MAX; 2];
@@ -225,7 +274,7 @@ fn check_simple(v: &[LatticePoint]) -> Result<(), UpsError> {
                 orient(c, d, a),
                 orient(c, d, b),
             );
-            let crossing = o1 * o2 < 0 && o3 * o4 < 0;
+            let crossing = o1.signum() * o2.signum() < 0 && o3.signum() * o4.signum() < 0;
             let touching = if adjacent {
                 // Only the shared corner; folding back along the same line is not allowed.
                 let shared = if f == e + 1 { b } else { a };

@@ -52,8 +52,33 @@ pub enum UpsError {
     #[error("the lattice base must be a positive finite number, not {0}")]
     InvalidBase(f64),
     /// The block matrix would be too large.
-    #[error("the lattice polygon is too large")]
-    TooLarge,
+    #[error(
+        "the lattice polygon is too large: its bounding box holds {0} lattice points, at most 2^31 are supported"
+    )]
+    TooLarge(u128),
+    /// Too many corners.
+    #[error("a lattice polygon may have at most 4096 corners, not {0}")]
+    TooManyCorners(usize),
+    /// A corner too far from the origin.
+    #[error("corner {corner} of the polygon lies beyond ±2^40 in lattice coordinates")]
+    CornerOutOfRange {
+        /// The corner's index.
+        corner: usize,
+    },
+    /// Lattice points would have coordinates beyond the supported range.
+    #[error("the lattice points would reach coordinates of {}, beyond the supported ±1e60 (a smaller base or origin)", crate::text::Short(*extent))]
+    OutOfRange {
+        /// The largest coordinate magnitude.
+        extent: f64,
+    },
+    /// The base, or a nonzero origin coordinate, is too small to compute with.
+    #[error("the lattice base {} or a nonzero origin coordinate ({}, {}) is below 1e-20", crate::text::Short(*base), crate::text::Short(origin[0]), crate::text::Short(origin[1]))]
+    TooFine {
+        /// The base.
+        base: f64,
+        /// The origin.
+        origin: [f64; 2],
+    },
     /// A control array has the wrong length.
     #[error("expected {expected} control triples, found {found}")]
     WrongBlockCount {

@@ -205,7 +205,7 @@ impl<V: Vector + Default> Ups<Weighted<V>> {
             });
         }
         for (i, w) in weights.iter().enumerate() {
-            if let Some(j) = w.iter().position(|&x| !(x > 0.0 && x.is_finite())) {
+            if let Some(j) = w.iter().position(|&x| !crate::limits::weight_ok(x)) {
                 return Err(UpsError::Ps(crate::ps::PsError::InvalidWeight {
                     vertex: i,
                     index: j,

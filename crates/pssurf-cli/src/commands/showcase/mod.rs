@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use pssurf::interrogate::{CurvatureQuantity, sample_patches};
-use pssurf::io::{Durability, atomic_write_bytes};
+use pssurf::io::Durability;
 use pssurf::surface::{PiecewiseSurface, Surface};
 use pssurf_viz::plot::{plot_sampled, range_scale};
 use pssurf_viz::{Camera, ColorMap, ColorScale, DomainOptions, PlotOptions, Range, Show};
@@ -84,8 +84,9 @@ pub fn run(args: &ShowcaseArgs) -> Result<()> {
         started.elapsed().as_secs_f64(),
     );
     let index = args.out.join("index.html");
-    atomic_write_bytes(&index, Durability::Atomic, page.as_bytes())
-        .with_context(|| format!("writing {}", index.display()))?;
+    crate::output::write_output(&index, Durability::Atomic, |w| {
+        Ok(w.write_all(page.as_bytes())?)
+    })?;
     bar.inc(1);
     bar.finish_and_clear();
     eprintln!(
@@ -235,6 +236,7 @@ fn write_domain(s: &Surface, color: Option<CurvatureQuantity>, path: &Path) -> R
         ..DomainOptions::default()
     };
     let svg = pssurf_viz::domain_svg(s, &opts);
-    atomic_write_bytes(path, Durability::Atomic, svg.as_bytes())
-        .with_context(|| format!("writing {}", path.display()))
+    crate::output::write_output(path, Durability::Atomic, |w| {
+        Ok(w.write_all(svg.as_bytes())?)
+    })
 }

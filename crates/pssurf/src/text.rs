@@ -1,0 +1,102 @@
+//! Values in messages: numbers in short form and long text cut, so that an error stays one
+//! readable line whatever the input.
+
+use std::fmt;
+
+/// A number in short form for messages: up to four significant digits, in scientific
+/// notation outside 1e-3 … 1e6 (`1e200`, `4.5e-30`, `0.125`, `-3`, `NaN`, `inf`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Short(pub f64);
+
+impl fmt::Display for Short {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() {
+            // `0` for ±0; NaN and ±inf as Rust writes them.
+            return if x == 0.0 {
+                f.write_str("0")
+            } else {
+                write!(f, "{x}")
+            };
+        }
+        let a = x.abs();
+        if (1e-3..1e6).contains(&a) {
+            // Four significant digits, trailing zeros dropped.
+            let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+            let s = format!("{x:.decimals$}");
+            let s = if s.contains('.') {
+                s.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                &s
+            };
+            f.write_str(s)
+        } else {
+            let s = format!("{x:.3e}");
+            let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            write!(f, "{mantissa}e{exponent}")
+        }
+    }
+}
+
+/// The longest text quoted in a message, in characters.
+pub const MAX_QUOTED: usize = 40;
+
+/// `text` cut to its first [`MAX_QUOTED`] characters, with `…` when cut.
+pub fn cut(text: &str) -> String {
+    match text.char_indices().nth(MAX_QUOTED) {
+        Some((end, _)) => format!("{}…", &text[..end]),
+        None => text.to_string(),
+    }
+}
+
+/// The longest message line, in characters.
+pub const MAX_LINE: usize = 300;
+
+/// A message line cut to [`MAX_LINE`] characters (with `…`), so that no input can make an
+/// error unreadable.
+pub fn cut_line(text: &str) -> String {
+    match text.char_indices().nth(MAX_LINE) {
+        Some((end, _)) => format!("{}…", &text[..end]),
+        None => text.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short() {
+        let cases = [
+            (0.0, "0"),
+            (-0.0, "0"),
+            (1e200, "1e200"),
+            (4.500_000_000_000_000_4e-30, "4.5e-30"),
+            (0.125, "0.125"),
+            (-3.0, "-3"),
+            (123_456.7, "123457"),
+            (1.0 / 3.0, "0.3333"),
+            (f64::MAX, "1.798e308"),
+            (f64::MIN_POSITIVE, "2.225e-308"),
+            (5e-324, "4.941e-324"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-inf"),
+            (999_999.9, "1000000"),
+        ];
+        for (x, want) in cases {
+            assert_eq!(Short(x).to_string(), want, "{x:e}");
+        }
+        for k in -320..=308 {
+            let x = 1.234_567_89 * 10f64.powi(k);
+            assert!(Short(x).to_string().len() <= 11, "{x:e}");
+        }
+    }
+
+    #[test]
+    fn long_text_is_cut() {
+        assert_eq!(cut("short"), "short");
+        let long = "é".repeat(100);
+        assert_eq!(cut(&long).chars().count(), MAX_QUOTED + 1);
+    }
+}
