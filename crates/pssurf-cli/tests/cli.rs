@@ -428,7 +428,10 @@ fn ups_commands_reject_bad_input() {
     ]);
     assert!(e.contains("2 thresholds for 1 levels"), "{e}");
     let e = fails(&["subdivide", &s(&ups), "--times", "20", "-o", &o]);
-    assert!(e.contains("would need about") && e.contains("--max-memory"), "{e}");
+    assert!(
+        e.contains("would need about") && e.contains("--max-memory"),
+        "{e}"
+    );
     let e = fails(&[
         "noise",
         &s(&ups),

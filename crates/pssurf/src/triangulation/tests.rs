@@ -260,3 +260,92 @@ fn coordinates_beyond_the_supported_range_are_refused() {
     assert_eq!(Triangulation::delaunay(v).unwrap().triangle_count(), 1);
     assert!(t.triangle_geometry(0).det().is_finite());
 }
+
+/// Issue 13, "overlapping (folded) triangles pass validation": parts of a domain stacked on
+/// one another are refused by the exact winding test of the boundary loops, whatever their
+/// nesting; holes and separate parts are accepted.
+#[test]
+fn folded_and_stacked_triangulations_are_refused_exactly() {
+    let square = vec![p(0.0, 0.0), p(4.0, 0.0), p(4.0, 4.0), p(0.0, 4.0)];
+    let inner = [p(1.0, 1.0), p(2.0, 1.0), p(1.0, 2.0)];
+    let mut v = square.clone();
+    v.extend(inner);
+    // A triangle lying inside the square, sharing nothing with it.
+    let e = Triangulation::try_new(v.clone(), vec![[0, 1, 2], [0, 2, 3], [4, 5, 6]]).unwrap_err();
+    assert!(
+        matches!(&e, TriangulationError::NonConforming { detail, .. } if detail.contains("inside another part")),
+        "{e}"
+    );
+    // The same triangle beside the square: two separate parts, valid.
+    let beside: Vec<_> = v
+        .iter()
+        .enumerate()
+        .map(|(k, q)| if k >= 4 { p(q.x + 10.0, q.y) } else { *q })
+        .collect();
+    Triangulation::try_new(beside, vec![[0, 1, 2], [0, 2, 3], [4, 5, 6]]).unwrap();
+    // A square with a square hole (8 triangles around it): valid; a triangle placed in the
+    // hole is a separate part, valid; one placed over the ring overlaps it.
+    let mut ring = square.clone();
+    ring.extend([p(1.0, 1.0), p(3.0, 1.0), p(3.0, 3.0), p(1.0, 3.0)]);
+    let ring_tris = vec![
+        [0, 1, 5],
+        [0, 5, 4],
+        [1, 2, 6],
+        [1, 6, 5],
+        [2, 3, 7],
+        [2, 7, 6],
+        [3, 0, 4],
+        [3, 4, 7],
+    ];
+    Triangulation::try_new(ring.clone(), ring_tris.clone()).unwrap();
+    let with = |a: Point2<f64>, b: Point2<f64>, c: Point2<f64>| {
+        let mut v = ring.clone();
+        v.extend([a, b, c]);
+        let mut t = ring_tris.clone();
+        t.push([8, 9, 10]);
+        Triangulation::try_new(v, t)
+    };
+    with(p(1.5, 1.5), p(2.5, 1.5), p(1.5, 2.5)).unwrap();
+    let e = with(p(0.2, 0.2), p(0.8, 0.2), p(0.2, 0.8)).unwrap_err();
+    assert!(matches!(e, TriangulationError::NonConforming { .. }), "{e}");
+    // A triangle touching the hole's boundary from inside at one point is refused too (a
+    // vertex on a boundary edge).
+    let e = with(p(2.0, 1.0), p(2.5, 1.5), p(1.5, 1.5)).unwrap_err();
+    assert!(matches!(e, TriangulationError::NonConforming { .. }), "{e}");
+    // A fan folded over itself at a boundary vertex: triangles around (0, 0) sweeping more
+    // than a full turn (all counter-clockwise, each edge shared properly).
+    let fan = vec![
+        p(0.0, 0.0),
+        p(1.0, 0.0),
+        p(0.0, 1.0),
+        p(-1.0, 0.0),
+        p(0.0, -1.0),
+        p(0.9, 0.1),
+    ];
+    let e =
+        Triangulation::try_new(fan, vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]]).unwrap_err();
+    assert!(matches!(e, TriangulationError::NonConforming { .. }), "{e}");
+}
+
+/// Nearly but not exactly degenerate configurations are decided exactly: a vertex 1e-300
+/// off a boundary edge is not on it; orientation is never misjudged near zero.
+#[test]
+fn boundary_contacts_are_decided_exactly() {
+    // Triangle B's vertex lies exactly on A's boundary edge: a hanging node.
+    let v = vec![
+        p(0.0, 0.0),
+        p(2.0, 0.0),
+        p(0.0, 2.0),
+        p(1.0, 1.0),
+        p(3.0, 1.0),
+        p(2.0, 3.0),
+    ];
+    let e = Triangulation::try_new(v.clone(), vec![[0, 1, 2], [3, 4, 5]]).unwrap_err();
+    assert!(matches!(e, TriangulationError::NonConforming { .. }), "{e}");
+    // Moved off the edge by the smallest step of its coordinates: separate parts (the gap is
+    // tiny but real).
+    let mut off = v.clone();
+    off[3] = p(1.0_f64.next_up(), 1.0_f64.next_up());
+    off[4] = p(3.0, 1.0_f64.next_up());
+    Triangulation::try_new(off, vec![[0, 1, 2], [3, 4, 5]]).unwrap();
+}

@@ -8,7 +8,7 @@ use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
 
 use super::{NO_NEIGHBOR, Triangulation, TriangulationError};
-use crate::geometry::{Triangle2, orient};
+use crate::geometry::{Triangle2, orient_exact};
 
 type E = TriangulationError;
 
@@ -45,6 +45,7 @@ pub(super) fn build(
     check_vertex_angles(&t)?;
     check_boundary_crossings(&t)?;
     check_bow_ties(&t)?;
+    check_boundary_loops(&t)?;
     Ok(t)
 }
 
@@ -102,7 +103,7 @@ fn check_duplicate_triangles(tris: &[[u32; 3]]) -> Result<(), E> {
 
 fn orient_counter_clockwise(vertices: &[Point2<f64>], tris: &mut [[u32; 3]]) -> Result<(), E> {
     let sign = |t: &[u32; 3]| {
-        orient(
+        orient_exact(
             vertices[t[0] as usize],
             vertices[t[1] as usize],
             vertices[t[2] as usize],
@@ -368,12 +369,15 @@ fn segments_conflict(
     (c, d): (usize, usize),
 ) -> Option<String> {
     let p = |i| t.vertex(i);
+    // Exactly on the closed segment (s, e), other than at its end points.
     let on_segment = |q: usize, s: usize, e: usize| {
         let (ps, pe, pq) = (p(s), p(e), p(q));
-        let len2 = (pe - ps).norm_squared();
-        let area = orient(ps, pe, pq).abs();
-        let along = (pq - ps).dot(&(pe - ps));
-        area <= 1e-12 * len2 && along > 0.0 && along < len2
+        let between = |a: f64, b: f64, x: f64| a.min(b) <= x && x <= a.max(b);
+        orient_exact(ps, pe, pq) == 0.0
+            && between(ps.x, pe.x, pq.x)
+            && between(ps.y, pe.y, pq.y)
+            && pq != ps
+            && pq != pe
     };
     for (q, s, e) in [(a, c, d), (b, c, d), (c, a, b), (d, a, b)] {
         if q != s && q != e && on_segment(q, s, e) {
@@ -387,12 +391,133 @@ fn segments_conflict(
         return None;
     }
     let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
-    let o1 = orient(pa, pb, pc);
-    let o2 = orient(pa, pb, pd);
-    let o3 = orient(pc, pd, pa);
-    let o4 = orient(pc, pd, pb);
+    let side = |a, b, c| orient_exact(a, b, c).signum();
+    let (o1, o2) = (side(pa, pb, pc), side(pa, pb, pd));
+    let (o3, o4) = (side(pc, pd, pa), side(pc, pd, pb));
     if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
         return Some("they cross".to_string());
     }
     None
+}
+
+/// The boundary loops: closed chains of boundary edges, each edge directed as in its
+/// (counter-clockwise) triangle, so that the domain lies on the left. Needs each boundary
+/// vertex to start exactly one boundary edge (no bow-ties, checked before).
+fn boundary_loops(t: &Triangulation) -> Vec<Vec<usize>> {
+    let mut next = vec![usize::MAX; t.vertex_count()];
+    for (tri, i) in t.boundary_edges() {
+        let (a, b) = t.edge_vertices(tri, i);
+        next[a] = b;
+    }
+    let mut seen = vec![false; t.vertex_count()];
+    let mut loops = Vec::new();
+    for start in 0..t.vertex_count() {
+        if next[start] == usize::MAX || seen[start] {
+            continue;
+        }
+        let mut cycle = Vec::new();
+        let mut v = start;
+        while !seen[v] && next[v] != usize::MAX {
+            seen[v] = true;
+            cycle.push(v);
+            v = next[v];
+        }
+        loops.push(cycle);
+    }
+    loops
+}
+
+/// How often the closed polygon `cycle` winds around `p` (not on it), counter-clockwise
+/// positive, with exact orientation tests (the crossing rule of Sunday's winding number).
+fn winding(t: &Triangulation, cycle: &[usize], p: Point2<f64>) -> i64 {
+    let mut w = 0;
+    for k in 0..cycle.len() {
+        let (a, b) = (t.vertex(cycle[k]), t.vertex(cycle[(k + 1) % cycle.len()]));
+        if a.y <= p.y {
+            if b.y > p.y && orient_exact(a, b, p) > 0.0 {
+                w += 1;
+            }
+        } else if b.y <= p.y && orient_exact(a, b, p) < 0.0 {
+            w -= 1;
+        }
+    }
+    w
+}
+
+/// Whether the simple polygon `cycle` runs clockwise: the turn at its lowest (then leftmost)
+/// vertex, a convex corner, decided exactly.
+fn clockwise(t: &Triangulation, cycle: &[usize]) -> bool {
+    let n = cycle.len();
+    let k = (0..n)
+        .min_by(|&i, &j| {
+            let (a, b) = (t.vertex(cycle[i]), t.vertex(cycle[j]));
+            a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x))
+        })
+        .expect("a loop has vertices");
+    let (prev, here, next) = (
+        t.vertex(cycle[(k + n - 1) % n]),
+        t.vertex(cycle[k]),
+        t.vertex(cycle[(k + 1) % n]),
+    );
+    orient_exact(prev, here, next) < 0.0
+}
+
+/// No part of the plane may be covered twice. With every triangle counter-clockwise and
+/// every interior edge shared by two triangles in opposite directions, the number of
+/// triangles covering a point p equals the winding number of the boundary chain around p
+/// (the interior edges cancel). The loops being simple and disjoint (checked before), that
+/// number is 0 or 1 everywhere exactly when it is 0 just to the right of every loop: for a
+/// point beside a vertex v of loop L, the sum of the other loops' windings around v, plus −1
+/// if L runs clockwise (the right side of a clockwise loop is inside it). This catches a
+/// part of the domain lying inside another (folded or stacked parts), which no local test
+/// sees. Exact; O(loops × boundary edges) with bounding-box filtering.
+fn check_boundary_loops(t: &Triangulation) -> Result<(), E> {
+    let loops = boundary_loops(t);
+    if loops.len() < 2 {
+        // One simple loop: its right side is outside it (clockwise loops were refused by
+        // the orientation check of the triangles around it).
+        return match loops.first() {
+            Some(l) if clockwise(t, l) => Err(overlap(t, l[0], "winds clockwise")),
+            _ => Ok(()),
+        };
+    }
+    let boxes: Vec<(Point2<f64>, Point2<f64>)> = loops
+        .iter()
+        .map(|l| {
+            l.iter()
+                .fold((t.vertex(l[0]), t.vertex(l[0])), |(lo, hi), &v| {
+                    let p = t.vertex(v);
+                    (
+                        Point2::new(lo.x.min(p.x), lo.y.min(p.y)),
+                        Point2::new(hi.x.max(p.x), hi.y.max(p.y)),
+                    )
+                })
+        })
+        .collect();
+    for (k, l) in loops.iter().enumerate() {
+        let p = t.vertex(l[0]);
+        let mut cover = if clockwise(t, l) { -1 } else { 0 };
+        for (m, other) in loops.iter().enumerate() {
+            let (lo, hi) = boxes[m];
+            if m != k && lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y {
+                cover += winding(t, other, p);
+            }
+        }
+        if cover != 0 {
+            return Err(overlap(
+                t,
+                l[0],
+                "lies inside another part of the domain, which it overlaps",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The error for a boundary loop through `vertex` that makes parts of the domain overlap.
+fn overlap(t: &Triangulation, vertex: usize, what: &str) -> E {
+    E::NonConforming {
+        triangle: t.molecule(vertex)[0] as usize,
+        detail: format!("the boundary through vertex {vertex} {what}"),
+    }
 }
