@@ -45,7 +45,10 @@ impl ColorArgs {
     pub fn range(&self) -> Result<Range> {
         if let Some(c) = self.contrast {
             if !(c > 0.0 && c.is_finite()) {
-                bail!("--contrast must be a positive number (got {c})");
+                bail!(
+                    "--contrast must be a positive number (got {})",
+                    pssurf::text::Short(c)
+                );
             }
             return Ok(Range::Contrast(c));
         }

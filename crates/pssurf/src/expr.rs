@@ -223,10 +223,11 @@ impl HeightFunction {
     /// assert!(HeightFunction::parse("x + t").is_err());
     /// ```
     pub fn parse(formula: &str) -> Result<Self, ExprError> {
+        check_shape(formula)?;
         check_minus_before_power(formula)?;
         let expr = FlatEx::<Dual, DualOps>::parse(formula).map_err(|e| ExprError::Parse {
-            formula: formula.to_string(),
-            message: e.to_string(),
+            formula: crate::text::cut(formula),
+            message: parse_message(formula, &e.to_string()),
         })?;
         let vars = expr
             .var_names()
@@ -268,6 +269,81 @@ impl HeightFunction {
 }
 
 /// Refuses a unary minus whose operand is raised to a power (`-x^2`, `2*-y^2`, `(-3^x)`).
+/// The longest formula accepted, in bytes.
+pub const MAX_FORMULA: usize = 10_000;
+/// The deepest nesting of parentheses accepted.
+pub const MAX_NESTING: usize = 100;
+
+/// Refuses formulas too long or too deeply nested to parse and evaluate safely (the parser
+/// and evaluator recurse), and unbalanced parentheses, in our words.
+fn check_shape(formula: &str) -> Result<(), ExprError> {
+    let refuse = |message: String| ExprError::Parse {
+        formula: crate::text::cut(formula),
+        message,
+    };
+    if formula.len() > MAX_FORMULA {
+        return Err(refuse(format!(
+            "it is {} characters long, more than {MAX_FORMULA}",
+            formula.len()
+        )));
+    }
+    let mut depth = 0usize;
+    for c in formula.chars() {
+        match c {
+            '(' => depth += 1,
+            ')' if depth == 0 => return Err(refuse("a `)` closes nothing".into())),
+            ')' => depth -= 1,
+            _ => {}
+        }
+        if depth > MAX_NESTING {
+            return Err(refuse(format!(
+                "parentheses are nested more than {MAX_NESTING} deep"
+            )));
+        }
+    }
+    if depth > 0 {
+        return Err(refuse(format!("{depth} `(` not closed")));
+    }
+    Ok(())
+}
+
+/// The functions a formula may use.
+const FUNCTIONS: [&str; 7] = ["sin", "cos", "tan", "exp", "ln", "sqrt", "abs"];
+
+/// What is wrong with a formula the parser refused, in our words (its own messages describe
+/// its internals).
+fn parse_message(formula: &str, parser: &str) -> String {
+    // A name directly followed by `(` that is not one of ours: an unknown function.
+    let bytes = formula.as_bytes();
+    let mut k = 0;
+    while k < bytes.len() {
+        if bytes[k].is_ascii_alphabetic() {
+            let start = k;
+            while k < bytes.len() && (bytes[k].is_ascii_alphanumeric() || bytes[k] == b'_') {
+                k += 1;
+            }
+            let name = &formula[start..k];
+            let next = formula[k..].trim_start().chars().next();
+            if next == Some('(') && !FUNCTIONS.contains(&name) {
+                return format!(
+                    "`{}` is not a function (use {})",
+                    crate::text::cut(name),
+                    FUNCTIONS.join(", ")
+                );
+            }
+        } else {
+            k += 1;
+        }
+    }
+    if parser.contains("parenthes") {
+        return "the parentheses do not match".into();
+    }
+    format!(
+        "it is not a formula in x and y (write numbers, x, y, + − * / ^, parentheses and the functions {})",
+        FUNCTIONS.join(", ")
+    )
+}
+
 fn check_minus_before_power(formula: &str) -> Result<(), ExprError> {
     let c: Vec<char> = formula.chars().collect();
     let mut prev: Option<char> = None; // the last non-space character
@@ -450,5 +526,25 @@ mod tests {
                 .abs()
                 < 1e-15
         );
+    }
+
+    /// Issue 13: "errors of the expression parser leak its internal wording"; deep nesting
+    /// and huge formulas are refused before the (recursive) parser sees them.
+    #[test]
+    fn formula_errors_are_in_our_words() {
+        let message = |f: &str| HeightFunction::parse(f).unwrap_err().to_string();
+        let m = message("foo(x)");
+        assert!(m.contains("`foo` is not a function (use sin"), "{m}");
+        assert!(!m.contains("wlog"), "{m}");
+        assert!(message("sin(x").contains("1 `(` not closed"));
+        assert!(message("x)").contains("closes nothing"));
+        assert!(message("x + * y").contains("not a formula in x and y"));
+        let deep = format!("{}x{}", "(".repeat(500), ")".repeat(500));
+        assert!(message(&deep).contains("nested more than 100"));
+        let long = "x+".repeat(10_000) + "x";
+        let m = message(&long);
+        assert!(m.contains("more than 10000") && m.len() < 200, "{m}");
+        let ok = format!("{}x{}", "(".repeat(100), ")".repeat(100));
+        assert!(HeightFunction::parse(&ok).is_ok());
     }
 }

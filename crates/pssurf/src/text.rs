@@ -50,15 +50,28 @@ pub fn cut(text: &str) -> String {
     }
 }
 
-/// The longest message line, in characters.
-pub const MAX_LINE: usize = 300;
+/// The longest message line, in characters (with its `error: ` prefix it stays within 300).
+pub const MAX_LINE: usize = 290;
 
-/// A message line cut to [`MAX_LINE`] characters (with `…`), so that no input can make an
-/// error unreadable.
+/// A message made readable whatever the input: every word (a run without spaces) longer than
+/// 60 characters, such as an echoed value, path or number, is cut to its first
+/// [`MAX_QUOTED`] characters with `…`, line breaks become spaces, and the whole is cut to
+/// [`MAX_LINE`] characters.
 pub fn cut_line(text: &str) -> String {
-    match text.char_indices().nth(MAX_LINE) {
-        Some((end, _)) => format!("{}…", &text[..end]),
-        None => text.to_string(),
+    let words: Vec<String> = text
+        .split([' ', '\n', '\r'])
+        .map(|w| {
+            if w.chars().count() > 60 {
+                cut(w)
+            } else {
+                w.to_string()
+            }
+        })
+        .collect();
+    let joined = words.join(" ");
+    match joined.char_indices().nth(MAX_LINE) {
+        Some((end, _)) => format!("{}…", &joined[..end]),
+        None => joined,
     }
 }
 
@@ -91,6 +104,18 @@ mod tests {
             let x = 1.234_567_89 * 10f64.powi(k);
             assert!(Short(x).to_string().len() <= 11, "{x:e}");
         }
+    }
+
+    #[test]
+    fn messages_stay_one_short_line() {
+        let value = "7".repeat(400);
+        let m = cut_line(&format!(
+            "unknown variant `{value}`, expected one of\n`a`, `b`"
+        ));
+        assert!(!m.contains('\n'));
+        assert!(m.starts_with("unknown variant `7777"), "{m}");
+        assert!(m.chars().count() < 120, "{m}");
+        assert!(cut_line(&"a ".repeat(1000)).chars().count() <= MAX_LINE + 1);
     }
 
     #[test]

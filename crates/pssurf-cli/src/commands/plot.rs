@@ -223,7 +223,10 @@ pub fn options(args: &PlotArgs, surface: &Surface) -> Result<PlotOptions> {
     let projection = match args.perspective {
         None => Projection::Orthographic,
         Some(f) if f > 0.0 && f < 170.0 => Projection::Perspective { fov_deg: f },
-        Some(f) => bail!("--perspective wants a field of view between 0 and 170 degrees (got {f})"),
+        Some(f) => bail!(
+            "--perspective wants a field of view between 0 and 170 degrees (got {})",
+            pssurf::text::Short(f)
+        ),
     };
     let level = args.level.unwrap_or_else(|| auto_level(surface, 200_000));
     estimate(surface, level, args.size).check()?;

@@ -83,3 +83,14 @@ pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     std::fs::write(&p, text).unwrap();
     p
 }
+
+/// A command line for a report, each argument cut to 40 characters.
+pub fn short_args(args: &[String]) -> String {
+    args.iter()
+        .map(|a| match a.char_indices().nth(40) {
+            Some((k, _)) => format!("{}…", &a[..k]),
+            None => a.clone(),
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
