@@ -180,3 +180,41 @@ fn is_broken_pipe(e: &anyhow::Error) -> bool {
             .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     })
 }
+
+#[cfg(test)]
+mod parser_fuzz {
+    //! Every parser of user input refuses bad input with an error, never a panic, whatever
+    //! the bytes (issue 13).
+
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+
+        #[test]
+        fn option_values_never_panic(s in "\\PC{0,40}|[-+0-9.eExX,%a-z ]{0,24}") {
+            use std::str::FromStr;
+            let _ = crate::budget::parse_size(&s);
+            let _ = crate::points::GridSize::from_str(&s);
+            let _ = crate::commands::plot::Size::from_str(&s);
+            let _ = crate::commands::plot::Pair::from_str(&s);
+            let _ = crate::commands::new::parse_polygon(&s);
+            let _ = crate::commands::denoise::parse_threshold(&s);
+            let _ = pssurf::expr::HeightFunction::parse(&s);
+            let _ = crate::colors::quantity(&s);
+        }
+
+        #[test]
+        fn csv_files_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..300),
+                                 text in "(x|y|z|zx|u|v|,|\\n|#|0|1e308|-|\\.|nan|inf| |\"|;|\\t){0,60}") {
+            let dir = tempfile::tempdir().unwrap();
+            for (k, content) in [bytes, text.into_bytes()].into_iter().enumerate() {
+                let p = dir.path().join(format!("d{k}.csv"));
+                std::fs::write(&p, content).unwrap();
+                let _ = crate::table::Table::read(&p);
+                let _ = crate::table::Table::read_columns(&p, Some(&["x", "y", "z"]));
+                let _ = crate::table::read_triangles(&p, 10);
+            }
+        }
+    }
+}

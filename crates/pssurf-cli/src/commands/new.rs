@@ -62,7 +62,7 @@ pub struct NewUpsArgs {
 }
 
 /// Parses "i,j i,j ..." into lattice points.
-fn parse_polygon(s: &str) -> Result<Vec<[i64; 2]>> {
+pub(crate) fn parse_polygon(s: &str) -> Result<Vec<[i64; 2]>> {
     s.split_whitespace()
         .enumerate()
         .map(|(k, pair)| {

@@ -854,3 +854,70 @@ fn fan_update_weights_agree_with_the_grid_computation_and_tabulate_the_boundary_
         }
     }
 }
+
+mod hostile_polygons {
+    //! Issue 13: lattice polygons with any corners (up to i64 extremes) and lattices with any
+    //! base are refused with an error or make a valid grid, never a panic or an overflow.
+
+    use super::*;
+    use proptest::prelude::*;
+
+    fn coordinate() -> impl Strategy<Value = i64> {
+        prop_oneof![
+            -6i64..6,
+            any::<i64>(),
+            Just(i64::MIN),
+            Just(i64::MAX),
+            Just(1 << 40),
+            Just(-(1 << 40) - 1)
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+
+        #[test]
+        fn any_polygon_and_base_fail_cleanly(
+            corners in proptest::collection::vec((coordinate(), coordinate()), 0..8),
+            base in prop_oneof![Just(1.0), Just(1e200), Just(1e-30), Just(f64::NAN), Just(-1.0), Just(1e-19)],
+        ) {
+            let v: Vec<LatticePoint> = corners.iter().map(|&(i, j)| [i, j]).collect();
+            if let Ok(p) = LatticePolygon::new(v) {
+                // Pick's theorem agrees with the grid when the grid is small enough to build.
+                let lattice = Lattice { base, origin: Point2::origin() };
+                if p.block_slots() <= 1 << 16
+                    && let Ok(g) = UpsGrid::new(lattice, p.clone())
+                {
+                    prop_assert_eq!(g.vertex_count() as u128, p.lattice_point_count());
+                    prop_assert_eq!(g.triangle_count() as u128, p.triangle_count());
+                }
+            }
+        }
+    }
+
+    /// Pick's theorem against the closed-form counts of the standard polygons and the grid.
+    #[test]
+    fn lattice_counts_match_closed_forms() {
+        for n in [1i64, 2, 5, 17] {
+            let m = n as u128;
+            for (sides, vertices, triangles) in [
+                (3, (m + 1) * (m + 2) / 2, m * m),
+                (4, (m + 1) * (m + 1), 2 * m * m),
+                (6, 3 * m * m + 3 * m + 1, 6 * m * m),
+            ] {
+                let p = LatticePolygon::standard(sides, n).unwrap();
+                assert_eq!(p.lattice_point_count(), vertices, "{sides} sides, n = {n}");
+                assert_eq!(p.triangle_count(), triangles, "{sides} sides, n = {n}");
+                let g = UpsGrid::new(
+                    Lattice {
+                        base: 1.0,
+                        origin: Point2::origin(),
+                    },
+                    p,
+                )
+                .unwrap();
+                assert_eq!(g.vertex_count() as u128, vertices);
+            }
+        }
+    }
+}
