@@ -4,6 +4,7 @@ use std::f64::consts::TAU;
 use std::sync::OnceLock;
 
 use nalgebra::Point2;
+use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
 
@@ -42,9 +43,8 @@ pub(super) fn build(
         spatial: OnceLock::new(),
     };
     mark_boundary(&mut t);
-    check_vertex_angles(&t)?;
+    check_vertex_fans(&t)?;
     check_boundary_crossings(&t)?;
-    check_bow_ties(&t)?;
     check_boundary_loops(&t)?;
     Ok(t)
 }
@@ -167,56 +167,77 @@ fn molecules(n: usize, tris: &[[u32; 3]]) -> Result<(Vec<u32>, Vec<u32>), E> {
 }
 
 /// Neighbours across each edge; detects duplicate triangles, edges in more than two
-/// triangles and triangles on the same side of an edge.
+/// triangles and triangles on the same side of an edge. In parallel over the triangles; the
+/// error reported is that of the first offending triangle.
 fn adjacency(tris: &[[u32; 3]], offsets: &[u32], list: &[u32]) -> Result<Vec<[u32; 3]>, E> {
     let mut neighbors = vec![[NO_NEIGHBOR; 3]; tris.len()];
-    for (t, tri) in tris.iter().enumerate() {
-        for i in 0..3 {
-            let (a, b) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-            let mol = &list[offsets[a as usize] as usize..offsets[a as usize + 1] as usize];
-            for &s in mol {
-                let s = s as usize;
-                if s == t {
-                    continue;
-                }
-                let other = tris[s];
-                let Some(j) = other.iter().position(|&x| x == b) else {
-                    continue;
-                };
-                let mut sorted_t = *tri;
-                let mut sorted_s = other;
-                sorted_t.sort_unstable();
-                sorted_s.sort_unstable();
-                if sorted_t == sorted_s {
-                    return Err(E::DuplicateTriangle {
-                        triangle: t.max(s),
-                        first: t.min(s),
-                    });
-                }
-                // In s the edge must run b → a (opposite direction).
-                let same_direction = other[(j + 2) % 3] == a;
-                if same_direction {
-                    return Err(E::NonConforming {
-                        triangle: t.max(s),
-                        detail: format!(
-                            "triangles {} and {} lie on the same side of their common edge ({a}, {b}), so they overlap",
-                            t.min(s),
-                            t.max(s)
-                        ),
-                    });
-                }
-                if neighbors[t][i] != NO_NEIGHBOR && neighbors[t][i] as usize != s {
-                    return Err(E::NonManifoldEdge {
-                        triangle: t,
-                        a: a as usize,
-                        b: b as usize,
-                    });
-                }
-                neighbors[t][i] = s as u32;
+    let first_error = neighbors
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(4096)
+        .filter_map(|(t, out)| {
+            triangle_neighbors(tris, offsets, list, t, out)
+                .err()
+                .map(|e| (t, e))
+        })
+        .min_by_key(|(t, _)| *t);
+    match first_error {
+        Some((_, e)) => Err(e),
+        None => Ok(neighbors),
+    }
+}
+
+/// The neighbours of triangle `t` across its three edges, into `out`.
+fn triangle_neighbors(
+    tris: &[[u32; 3]],
+    offsets: &[u32],
+    list: &[u32],
+    t: usize,
+    out: &mut [u32; 3],
+) -> Result<(), E> {
+    let tri = tris[t];
+    for i in 0..3 {
+        let (a, b) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+        let mol = &list[offsets[a as usize] as usize..offsets[a as usize + 1] as usize];
+        for &s in mol {
+            let s = s as usize;
+            if s == t {
+                continue;
             }
+            let other = tris[s];
+            let Some(j) = other.iter().position(|&x| x == b) else {
+                continue;
+            };
+            // Both contain a and b: the same triangle when their third vertices agree.
+            let third = other.iter().copied().find(|&x| x != a && x != b);
+            if third == Some(tri[i]) {
+                return Err(E::DuplicateTriangle {
+                    triangle: t.max(s),
+                    first: t.min(s),
+                });
+            }
+            // In s the edge must run b → a (opposite direction).
+            if other[(j + 2) % 3] == a {
+                return Err(E::NonConforming {
+                    triangle: t.max(s),
+                    detail: format!(
+                        "triangles {} and {} lie on the same side of their common edge ({a}, {b}), so they overlap",
+                        t.min(s),
+                        t.max(s)
+                    ),
+                });
+            }
+            if out[i] != NO_NEIGHBOR && out[i] as usize != s {
+                return Err(E::NonManifoldEdge {
+                    triangle: t,
+                    a: a as usize,
+                    b: b as usize,
+                });
+            }
+            out[i] = s as u32;
         }
     }
-    Ok(neighbors)
+    Ok(())
 }
 
 fn mark_boundary(t: &mut Triangulation) {
@@ -276,38 +297,41 @@ fn fan(t: &Triangulation, v: usize) -> (usize, f64) {
 
 /// The angles of a vertex's triangles must add up to 2π around an interior vertex and to
 /// less than 2π at a boundary vertex; otherwise the triangles wind around it more than once.
-fn check_vertex_angles(t: &Triangulation) -> Result<(), E> {
-    for v in 0..t.vertex_count() {
-        let (boundary_edges, angle) = fan(t, v);
-        let tol = 1e-9 * TAU;
-        let bad = if boundary_edges == 0 {
-            (angle - TAU).abs() > tol
-        } else {
-            angle > TAU + tol
-        };
-        if bad {
-            return Err(E::NonConforming {
-                triangle: t.molecule(v)[0] as usize,
-                detail: format!(
-                    "the triangles around vertex {v} cover an angle of {:.6}π instead of {}, so they overlap",
-                    angle / std::f64::consts::PI,
-                    if boundary_edges == 0 {
-                        "2π"
-                    } else {
-                        "less than 2π"
-                    }
-                ),
-            });
-        }
-    }
-    Ok(())
-}
-
 /// A vertex whose fan has more than one gap joins parts that touch at a point (a bow-tie).
-fn check_bow_ties(t: &Triangulation) -> Result<(), E> {
-    match (0..t.vertex_count()).find(|&v| fan(t, v).0 > 2) {
-        Some(vertex) => Err(E::NonManifoldVertex { vertex }),
+/// In parallel over the vertices; the first offending vertex is reported.
+fn check_vertex_fans(t: &Triangulation) -> Result<(), E> {
+    let bad = (0..t.vertex_count())
+        .into_par_iter()
+        .with_min_len(4096)
+        .filter_map(|v| {
+            let (boundary_edges, angle) = fan(t, v);
+            let tol = 1e-9 * TAU;
+            let wound = if boundary_edges == 0 {
+                (angle - TAU).abs() > tol
+            } else {
+                angle > TAU + tol
+            };
+            if wound {
+                return Some((v, Err(angle)));
+            }
+            (boundary_edges > 2).then_some((v, Ok(())))
+        })
+        .min_by_key(|(v, _)| *v);
+    match bad {
         None => Ok(()),
+        Some((vertex, Ok(()))) => Err(E::NonManifoldVertex { vertex }),
+        Some((v, Err(angle))) => Err(E::NonConforming {
+            triangle: t.molecule(v)[0] as usize,
+            detail: format!(
+                "the triangles around vertex {v} cover an angle of {}π instead of {}, so they overlap",
+                crate::text::Short(angle / std::f64::consts::PI),
+                if fan(t, v).0 == 0 {
+                    "2π"
+                } else {
+                    "less than 2π"
+                }
+            ),
+        }),
     }
 }
 
