@@ -895,21 +895,22 @@ fn cases() -> Vec<(Case, Vec<(String, Vec<u8>)>)> {
         None,
         vec![("s.json".into(), duplicate.into_bytes())],
     );
-    // A vertex of degree 500 (the PS-triangle search is cubic in the hull size; see
-    // docs/reliability.md for the open limit).
-    let d = 500;
-    let mut fan = vec![[0.0, 0.0]];
-    fan.extend((0..d).map(|k| {
-        let a = std::f64::consts::TAU * k as f64 / d as f64;
-        [a.cos(), a.sin()]
-    }));
-    let tris: Vec<[usize; 3]> = (0..d).map(|k| [0, 1 + k, 1 + (k + 1) % d]).collect();
-    add(
-        "degenerate geometry",
-        strings(&["info", "s.json"]),
-        None,
-        vec![("s.json".into(), ps_text(&fan, &tris).into_bytes())],
-    );
+    // Vertices of degree 8,000 and 100,000 (the PS-triangle search was cubic in the degree,
+    // the adjacency quadratic).
+    for d in [8_000usize, 100_000] {
+        let mut fan = vec![[0.0, 0.0]];
+        fan.extend((0..d).map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / d as f64;
+            [a.cos(), a.sin()]
+        }));
+        let tris: Vec<[usize; 3]> = (0..d).map(|k| [0, 1 + k, 1 + (k + 1) % d]).collect();
+        add(
+            "degenerate geometry",
+            strings(&["info", "s.json"]),
+            None,
+            vec![("s.json".into(), ps_text(&fan, &tris).into_bytes())],
+        );
+    }
     // Odd output targets.
     for target in [
         "/dev/null",

@@ -1,6 +1,7 @@
 //! Plane geometry of the domain: points, triangles and barycentric coordinates, convex hulls
 //! and minimal enclosing triangles.
 
+mod enclosing_linear;
 mod enclosing_triangle;
 pub mod hull;
 

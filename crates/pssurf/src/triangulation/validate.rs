@@ -198,13 +198,25 @@ fn triangle_neighbors(
     let tri = tris[t];
     for i in 0..3 {
         let (a, b) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-        let mol = &list[offsets[a as usize] as usize..offsets[a as usize + 1] as usize];
+        // Scan the smaller of the two molecules: a vertex of degree d otherwise costs d² (a
+        // fan of 100,000 triangles took 6 s).
+        let molecule =
+            |v: u32| &list[offsets[v as usize] as usize..offsets[v as usize + 1] as usize];
+        let (mol_a, mol_b) = (molecule(a), molecule(b));
+        let mol = if mol_a.len() <= mol_b.len() {
+            mol_a
+        } else {
+            mol_b
+        };
         for &s in mol {
             let s = s as usize;
             if s == t {
                 continue;
             }
             let other = tris[s];
+            if !other.contains(&a) {
+                continue;
+            }
             let Some(j) = other.iter().position(|&x| x == b) else {
                 continue;
             };
