@@ -146,7 +146,7 @@ mod tests {
         assert!(
             set_vertex_control(&mut s, 3, &c)
                 .unwrap_err()
-                .contains("positive")
+                .contains("between 1e-30 and 1e30")
         );
         assert!(
             set_vertex_control(&mut s, 10_000, &before)

@@ -253,23 +253,24 @@ const EXTREMES: [&str; 13] = [
     "1e-320",
 ];
 
+/// Files to create for a case: (name, content).
+type Files = Vec<(String, Vec<u8>)>;
+
 /// All cases, by category. Files named in a case are created in its directory first
 /// (`extra`).
-fn cases() -> Vec<(Case, Vec<(String, Vec<u8>)>)> {
-    let mut out: Vec<(Case, Vec<(String, Vec<u8>)>)> = Vec::new();
-    let mut add = |category: &'static str,
-                   args: Vec<String>,
-                   output: Option<&str>,
-                   extra: Vec<(String, Vec<u8>)>| {
-        out.push((
-            Case {
-                category,
-                args,
-                output: output.map(PathBuf::from),
-            },
-            extra,
-        ));
-    };
+fn cases() -> Vec<(Case, Files)> {
+    let mut out: Vec<(Case, Files)> = Vec::new();
+    let mut add =
+        |category: &'static str, args: Vec<String>, output: Option<&str>, extra: Files| {
+            out.push((
+                Case {
+                    category,
+                    args,
+                    output: output.map(PathBuf::from),
+                },
+                extra,
+            ));
+        };
     // Extreme numbers in every numeric option.
     for x in EXTREMES {
         let numeric: Vec<Vec<String>> = vec![
@@ -434,7 +435,8 @@ fn cases() -> Vec<(Case, Vec<(String, Vec<u8>)>)> {
             Some("o.csv"),
             vec![("p.csv".into(), pts)],
         );
-        let json_number = x.replace("NaN", "NaN").replace("inf", "Infinity");
+        // JSON has no NaN or infinity: such a file is malformed, and must be refused as such.
+        let json_number = x.replace("inf", "Infinity");
         let surf = ps_text(
             &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
             &[[0, 1, 2], [0, 2, 3]],
@@ -678,6 +680,21 @@ fn cases() -> Vec<(Case, Vec<(String, Vec<u8>)>)> {
             "sizes at and past the limits",
             strings(&args),
             output,
+            vec![],
+        );
+    }
+    // The showcase at picture sizes at and past the limit (refused by the budget before it
+    // starts), and into odd places.
+    for (size, out) in [
+        ("16384x16384", "g"),
+        ("16385x16", "g"),
+        ("64x64", "/dev/null"),
+        ("64x64", "ups.json"),
+    ] {
+        add(
+            "sizes at and past the limits",
+            strings(&["showcase", "--out", out, "--size", size]),
+            None,
             vec![],
         );
     }

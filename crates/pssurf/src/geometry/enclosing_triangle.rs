@@ -440,7 +440,7 @@ mod tests {
                 uniform(&mut r, 0.2, 1.0),
                 uniform(&mut r, 0.0, 3.0),
             );
-            let scale = 10f64.powi((case % 13) as i32 - 6);
+            let scale = 10f64.powi(case % 13 - 6);
             let offset = if case % 3 == 0 {
                 1e6 * scale.sqrt()
             } else {

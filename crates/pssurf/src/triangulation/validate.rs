@@ -43,8 +43,13 @@ pub(super) fn build(
         spatial: OnceLock::new(),
     };
     mark_boundary(&mut t);
-    check_vertex_fans(&t)?;
+    let bow_tie = check_vertex_fans(&t)?;
     check_boundary_crossings(&t)?;
+    // A bow-tie is reported after the boundary contacts, which name the cause more exactly
+    // when both are found (a vertex on another triangle's edge also makes a bow-tie there).
+    if let Some(vertex) = bow_tie {
+        return Err(E::NonManifoldVertex { vertex });
+    }
     check_boundary_loops(&t)?;
     Ok(t)
 }
@@ -310,8 +315,9 @@ fn fan(t: &Triangulation, v: usize) -> (usize, f64) {
 /// The angles of a vertex's triangles must add up to 2π around an interior vertex and to
 /// less than 2π at a boundary vertex; otherwise the triangles wind around it more than once.
 /// A vertex whose fan has more than one gap joins parts that touch at a point (a bow-tie).
-/// In parallel over the vertices; the first offending vertex is reported.
-fn check_vertex_fans(t: &Triangulation) -> Result<(), E> {
+/// In parallel over the vertices; the first offending vertex is reported, a winding as an
+/// error, a bow-tie as the returned vertex.
+fn check_vertex_fans(t: &Triangulation) -> Result<Option<usize>, E> {
     let bad = (0..t.vertex_count())
         .into_par_iter()
         .with_min_len(4096)
@@ -330,8 +336,8 @@ fn check_vertex_fans(t: &Triangulation) -> Result<(), E> {
         })
         .min_by_key(|(v, _)| *v);
     match bad {
-        None => Ok(()),
-        Some((vertex, Ok(()))) => Err(E::NonManifoldVertex { vertex }),
+        None => Ok(None),
+        Some((vertex, Ok(()))) => Ok(Some(vertex)),
         Some((v, Err(angle))) => Err(E::NonConforming {
             triangle: t.molecule(v)[0] as usize,
             detail: format!(

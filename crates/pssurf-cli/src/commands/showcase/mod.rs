@@ -47,10 +47,12 @@ const LEVEL: u32 = 2;
 
 /// Runs `pssurf showcase`.
 pub fn run(args: &ShowcaseArgs) -> Result<()> {
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
     let started = std::time::Instant::now();
     let variants = experiment::variants();
+    // The pictures are drawn one at a time: the budget is that of one plot.
+    super::plot::estimate(&variants[0].surface, LEVEL, args.size).check()?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
     let bar = progress_bar(variants.len() as u64 * 5 + 4);
     let original = &variants[0].surface;
     let points = experiment::sample_points(original, 4000);
