@@ -175,8 +175,10 @@ fn table_estimate(
         crate::output::Format::Csv => 25 * width as u64,
         crate::output::Format::Npy => 8 * width as u64,
     };
-    let kept = if outside == Outside::Skip {
-        mul(rows, 8 * width as u64)
+    // Kept rows (skipping into .npy) grow a vector by doubling: up to twice their size.
+    let npy = crate::output::Format::of(output) == crate::output::Format::Npy;
+    let kept = if outside == Outside::Skip && npy {
+        mul(rows, 16 * width as u64)
     } else {
         0
     };
@@ -233,9 +235,10 @@ pub fn evaluate_table<S: ParametricSurface>(
             }
         });
     };
-    // The number of rows must be known before writing a .npy header: when skipping points,
-    // evaluate everything first (kept in memory); otherwise stream.
-    let skipping = outside == Outside::Skip;
+    // A .npy header states the number of rows: when skipping points, evaluate everything
+    // first (kept in memory). A CSV file is streamed, skipped rows left out on the way.
+    let npy = crate::output::Format::of(output) == crate::output::Format::Npy;
+    let skipping = outside == Outside::Skip && npy;
     let mut kept: Vec<f64> = Vec::new();
     if skipping {
         for start in (0..n).step_by(CHUNK) {
@@ -262,6 +265,9 @@ pub fn evaluate_table<S: ParametricSurface>(
             }
             rows.clear();
             for row in buf.chunks(wide) {
+                if outside == Outside::Skip && row[width] != 0.0 {
+                    continue;
+                }
                 rows.extend_from_slice(&row[..width]);
             }
             sink.rows(&rows)?;
