@@ -183,7 +183,9 @@ pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
         }
         .check()?;
     }
-    Ok(pssurf::io::load(path)?)
+    // A device or pipe has no size: read at most what the budget allows.
+    let max_bytes = Budget::current().memory.saturating_sub(BASE_MEMORY) / 8;
+    Ok(pssurf::io::load_limited(path, max_bytes)?)
 }
 
 /// The machine's memory in bytes: the smaller of the physical memory and this process's

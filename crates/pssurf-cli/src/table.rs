@@ -39,8 +39,7 @@ impl Table {
         let mut rdr = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
-            .from_path(path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
+            .from_reader(open_bounded(path)?);
         let headers: Vec<String> = rdr
             .headers()
             .with_context(|| format!("{}: cannot read the header line", path.display()))?
@@ -137,6 +136,38 @@ pub fn short(text: &str) -> String {
     }
 }
 
+/// A reader that fails, rather than stops, after `left` bytes: a device or pipe (`/dev/zero`)
+/// has no size to check against the budget, and must not be read without end.
+struct Bounded<R> {
+    inner: R,
+    left: u64,
+}
+
+impl<R: std::io::Read> std::io::Read for Bounded<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.left = self.left.checked_sub(n as u64).ok_or_else(|| {
+            std::io::Error::new(
+                std::io::ErrorKind::FileTooLarge,
+                "longer than the memory budget allows (raise it with --max-memory)",
+            )
+        })?;
+        Ok(n)
+    }
+}
+
+/// Opens a CSV file for reading at most what the memory budget allows (24 bytes of memory per
+/// byte of text at most, see [`Table::read_columns`]).
+fn open_bounded(path: &Path) -> Result<Bounded<std::io::BufReader<std::fs::File>>> {
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let budget = crate::budget::Budget::current().memory;
+    Ok(Bounded {
+        inner: std::io::BufReader::new(file),
+        left: budget.saturating_sub(crate::budget::BASE_MEMORY) / 24,
+    })
+}
+
 /// Reads triangles as rows `i,j,k` of zero-based vertex indices, with or without a header
 /// (a first line with a letter in it).
 pub fn read_triangles(path: &Path, vertex_count: usize) -> Result<Vec<[usize; 3]>> {
@@ -144,8 +175,7 @@ pub fn read_triangles(path: &Path, vertex_count: usize) -> Result<Vec<[usize; 3]
         .has_headers(false)
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
-        .from_path(path)
-        .with_context(|| format!("cannot read {}", path.display()))?;
+        .from_reader(open_bounded(path)?);
     let mut out = Vec::new();
     for (k, rec) in rdr.records().enumerate() {
         let rec = rec.with_context(|| format!("{}: line {}", path.display(), k + 1))?;

@@ -698,6 +698,22 @@ fn cases() -> Vec<(Case, Files)> {
             vec![],
         );
     }
+    // Endless and special inputs.
+    for args in [
+        vec!["info", "/dev/zero"],
+        vec!["info", "/dev/null"],
+        vec!["info", "."],
+        vec!["eval", "ups.json", "--at", "/dev/zero"],
+        vec!["fit", "/dev/zero", "-o", "o.json"],
+        vec!["fit", "/dev/urandom", "-o", "o.json"],
+    ] {
+        add(
+            "malformed and truncated files",
+            strings(&args),
+            None,
+            vec![],
+        );
+    }
     // Malformed and truncated files, unknown and duplicate fields, huge strings.
     let base = ps_text(
         &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],

@@ -456,6 +456,30 @@ fn output_to_a_directory_or_a_missing_one_is_explained() {
         &dir,
     ]));
     assert!(e.contains("is a directory"), "{e}");
+    // `-o o.json/` where o.json does not exist, or is a file (was "Not a directory").
+    for name in ["new.json/", "file.json/", "file.json/x.csv"] {
+        std::fs::write(d.path().join("file.json"), "keep").unwrap();
+        let target = format!("{}/{name}", d.path().display());
+        let e = one_error(&pssurf(&[
+            "eval",
+            &u,
+            "--grid",
+            "3x3",
+            "--outside",
+            "nan",
+            "-o",
+            &target,
+        ]));
+        assert!(!e.contains("Not a directory"), "{e}");
+        assert!(
+            e.contains("names a directory") || e.contains("file.json is not a directory"),
+            "{e}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(d.path().join("file.json")).unwrap(),
+            "keep"
+        );
+    }
     let missing = s(&d.path().join("no/such/o.csv"));
     let e = one_error(&pssurf(&[
         "eval",
@@ -468,6 +492,26 @@ fn output_to_a_directory_or_a_missing_one_is_explained() {
         &missing,
     ]));
     assert!(e.contains("does not exist"), "{e}");
+}
+
+#[test]
+fn endless_inputs_are_read_only_as_far_as_the_budget() {
+    // /dev/zero has no size to check: reading stops at the budget with one line.
+    if !Path::new("/dev/zero").exists() {
+        return;
+    }
+    let d = tempfile::tempdir().unwrap();
+    let u = small_ups(d.path());
+    for args in [
+        vec!["info", "/dev/zero"],
+        vec!["eval", &u, "--at", "/dev/zero"],
+        vec!["fit", "/dev/zero", "-o", "o.json"],
+    ] {
+        let mut all = args.clone();
+        all.extend(["--max-memory", "200M"]);
+        let e = one_error(&pssurf(&all));
+        assert!(e.contains("longer than"), "{e}");
+    }
 }
 
 #[test]

@@ -117,15 +117,29 @@ enum Target {
 /// Resolves what is at `path` (module docs of [`atomic_write`]).
 fn target(path: &Path) -> std::io::Result<Target> {
     use std::io::{Error, ErrorKind};
+    // `out.json/` names a directory, whatever is there (the system would say "Not a
+    // directory" of a file, or create nothing useful).
+    if path.as_os_str().to_string_lossy().ends_with('/') {
+        return Err(Error::new(
+            ErrorKind::IsADirectory,
+            if path.is_dir() {
+                "is a directory".to_string()
+            } else {
+                "ends with `/`, so it names a directory; give a file name".to_string()
+            },
+        ));
+    }
     let Ok(meta) = std::fs::symlink_metadata(path) else {
         // Nothing there yet: the directory must exist.
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
             && !dir.is_dir()
         {
-            return Err(Error::new(
-                ErrorKind::NotFound,
-                format!("the directory {} does not exist", dir.display()),
-            ));
+            let what = if dir.exists() {
+                format!("{} is not a directory", dir.display())
+            } else {
+                format!("the directory {} does not exist", dir.display())
+            };
+            return Err(Error::new(ErrorKind::NotFound, what));
         }
         return Ok(Target::File(path.to_path_buf()));
     };

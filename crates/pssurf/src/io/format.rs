@@ -837,9 +837,40 @@ fn bezier_file(
 
 /// Reads and validates a surface file.
 pub fn load(path: &Path) -> Result<Surface, FileError> {
-    let text = std::fs::read_to_string(path).map_err(|cause| FileError::Io {
+    load_limited(path, u64::MAX)
+}
+
+/// Reads and validates a surface file of at most `max_bytes` bytes; a longer one (or an
+/// endless stream such as `/dev/zero`) is refused after reading that much, so that memory
+/// stays bounded whatever `path` is.
+pub fn load_limited(path: &Path, max_bytes: u64) -> Result<Surface, FileError> {
+    use std::io::Read;
+    let io = |cause| FileError::Io {
         path: path.to_path_buf(),
         cause,
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    if file.metadata().is_ok_and(|m| m.is_dir()) {
+        return Err(io(std::io::Error::new(
+            std::io::ErrorKind::IsADirectory,
+            "is a directory",
+        )));
+    }
+    let mut bytes = Vec::new();
+    file.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(io(std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            format!("longer than the {max_bytes} bytes allowed"),
+        )));
+    }
+    let text = String::from_utf8(bytes).map_err(|_| {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "is not UTF-8 text (a pssurf file is JSON)",
+        ))
     })?;
     from_json_str(&text).map_err(|cause| FileError::Format {
         path: path.to_path_buf(),

@@ -561,21 +561,54 @@ impl NormalSystem {
     }
 }
 
-/// What tr A(λ) = tr((BᵀB + λQ)⁻¹ BᵀB) is computed from: the columns of BᵀB (exact), or
-/// Bᵀu for random ±1 vectors u (Hutchinson: E[uᵀ A u] = tr A).
+/// What tr A(λ) = tr((BᵀB + λQ)⁻¹ BᵀB) is computed from: the columns of BᵀB, or the rows
+/// b_i of B (both exact; whichever are fewer), or Bᵀu for random ±1 vectors u (Hutchinson:
+/// E[uᵀ A u] = tr A).
 struct TraceProbes {
     columns: Vec<f64>,
     count: usize,
-    exact: bool,
+    mode: TraceMode,
+}
+
+/// How [`TraceProbes::trace`] combines the solutions y = (BᵀB + λQ)⁻¹ v of its columns v.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TraceMode {
+    /// v is column k of BᵀB: tr A = Σ_k y_k.
+    Diagonal,
+    /// v = b_i, row i of B: tr A = tr(B H⁻¹ Bᵀ) = Σ_i b_iᵀ y.
+    Rows,
+    /// v = Bᵀu: tr A ≈ mean of vᵀ y.
+    Hutchinson,
 }
 
 impl TraceProbes {
     /// Exact for bases of at most [`EXACT_TRACE_MAX`] values, Hutchinson's otherwise.
+    /// Exact from the fewer of the data rows and the columns when there are fewer than
+    /// [`EXACT_TRACE_MAX`] data rows or control values.
     fn new(rows: &DesignRows, btb: &Block3Matrix) -> Self {
-        if 3 * btb.vertex_count() <= EXACT_TRACE_MAX {
+        let n = 3 * btb.vertex_count();
+        let data = rows.rows.len();
+        if data < n && data <= EXACT_TRACE_MAX {
+            Self::data_rows(rows, n)
+        } else if n <= EXACT_TRACE_MAX {
             Self::exact(btb)
         } else {
-            Self::hutchinson(rows, 3 * btb.vertex_count())
+            Self::hutchinson(rows, n)
+        }
+    }
+
+    /// The rows of B as vectors, for the exact trace when there are fewer data than values
+    /// (a smoothing fit on the data's own triangulation: three values per point).
+    fn data_rows(rows: &DesignRows, n: usize) -> Self {
+        let count = rows.rows.len();
+        let mut columns = vec![0.0; n * count];
+        for (k, row) in rows.rows.iter().enumerate() {
+            rows.scatter(row, 1.0, &mut columns[k * n..(k + 1) * n]);
+        }
+        TraceProbes {
+            columns,
+            count,
+            mode: TraceMode::Rows,
         }
     }
 
@@ -595,7 +628,7 @@ impl TraceProbes {
         TraceProbes {
             columns,
             count: n,
-            exact: true,
+            mode: TraceMode::Diagonal,
         }
     }
 
@@ -616,12 +649,12 @@ impl TraceProbes {
         TraceProbes {
             columns,
             count,
-            exact: false,
+            mode: TraceMode::Hutchinson,
         }
     }
 
     fn estimated(&self) -> bool {
-        !self.exact
+        self.mode == TraceMode::Hutchinson
     }
 
     /// tr A(λ) with the factorisation of BᵀB + λQ.
@@ -635,21 +668,19 @@ impl TraceProbes {
             let x = factor.solve_many(b, last - first);
             for (k, col) in (first..last).enumerate() {
                 let y = &x[k * n..(k + 1) * n];
-                total += if self.exact {
-                    y[col]
-                } else {
-                    b[k * n..(k + 1) * n]
+                total += match self.mode {
+                    TraceMode::Diagonal => y[col],
+                    TraceMode::Rows | TraceMode::Hutchinson => b[k * n..(k + 1) * n]
                         .iter()
                         .zip(y)
                         .map(|(a, c)| a * c)
-                        .sum::<f64>()
+                        .sum::<f64>(),
                 };
             }
         }
-        if self.exact {
-            total
-        } else {
-            total / self.count as f64
+        match self.mode {
+            TraceMode::Hutchinson => total / self.count as f64,
+            _ => total,
         }
     }
 }
@@ -751,12 +782,17 @@ mod tests {
         let m = b.transpose() * &b + qd * lambda;
         let hat = &b * m.clone().try_inverse().unwrap() * b.transpose();
         let factor = system.factor(lambda).unwrap();
-        let t = TraceProbes::exact(&btb).trace(&factor);
-        assert!(
-            (t - hat.trace()).abs() <= 1e-8 * hat.trace(),
-            "{t} vs {}",
-            hat.trace()
-        );
+        // Both exact forms: from the columns of BᵀB and from the rows of B.
+        for t in [
+            TraceProbes::exact(&btb).trace(&factor),
+            TraceProbes::data_rows(&rows, n).trace(&factor),
+        ] {
+            assert!(
+                (t - hat.trace()).abs() <= 1e-8 * hat.trace(),
+                "{t} vs {}",
+                hat.trace()
+            );
+        }
         // The sparse normal equations against the dense ones.
         let zv = nalgebra::DVector::from_column_slice(&z);
         let dense = m.try_inverse().unwrap() * b.transpose() * zv;
