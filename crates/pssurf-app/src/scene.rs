@@ -322,3 +322,71 @@ impl Scene {
         })
     }
 }
+
+#[cfg(test)]
+mod fuzz {
+    //! Issue 13: scene files with any number replaced by an extreme one, or any span cut
+    //! out, are refused with a message or load into a scene that saves and loads again.
+
+    use super::*;
+    use proptest::prelude::*;
+
+    const EXTREMES: [&str; 10] = [
+        "0",
+        "-0",
+        "1e300",
+        "-1e300",
+        "1e-300",
+        "1.7976931348623157e308",
+        "1e309",
+        "12345678901234567890",
+        "-1",
+        "4.9e-324",
+    ];
+
+    /// The byte ranges of the numbers in a JSON text.
+    fn numbers(text: &str) -> Vec<(usize, usize)> {
+        let b = text.as_bytes();
+        let mut out = Vec::new();
+        let mut k = 0;
+        while k < b.len() {
+            if b[k] == b'-' || b[k].is_ascii_digit() {
+                let start = k;
+                while k < b.len() && matches!(b[k], b'0'..=b'9' | b'-' | b'+' | b'.' | b'e' | b'E')
+                {
+                    k += 1;
+                }
+                out.push((start, k));
+            } else {
+                k += 1;
+            }
+        }
+        out
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+
+        #[test]
+        fn mutated_scene_files_load_or_fail_cleanly(
+            edits in proptest::collection::vec((any::<usize>(), 0usize..EXTREMES.len()), 0..4),
+            cut in proptest::option::of((any::<usize>(), 0usize..60)),
+        ) {
+            let mut text = crate::demo::scene().to_json();
+            for (which, value) in edits {
+                let spans = numbers(&text);
+                let (a, b) = spans[which % spans.len()];
+                text.replace_range(a..b, EXTREMES[value]);
+            }
+            if let Some((at, len)) = cut {
+                let a = at % text.len();
+                let b = (a + len).min(text.len());
+                text.replace_range(a..b, "");
+            }
+            if let Ok(scene) = Scene::from_json(&text, "fuzz") {
+                let again = Scene::from_json(&scene.to_json(), "fuzz");
+                prop_assert!(again.is_ok(), "{:?}", again.err());
+            }
+        }
+    }
+}

@@ -116,3 +116,34 @@ impl ViewState {
         Ok(self)
     }
 }
+
+#[cfg(test)]
+mod fuzz {
+    //! Issue 13: saved view settings of any content are refused with a message or load valid.
+
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+
+        #[test]
+        fn mutated_view_settings_load_or_fail_cleanly(
+            at in any::<usize>(),
+            insert in "[-0-9.e,\\[\\]{}\":a-z ]{0,8}|1e309|-1e300|NaN",
+            cut in 0usize..20,
+        ) {
+            let mut text = serde_json::to_string(&ViewState::default()).unwrap();
+            let a = at % (text.len() + 1);
+            let b = (a + cut).min(text.len());
+            text.replace_range(a..b, &insert);
+            let dir = tempfile::tempdir().unwrap();
+            let path = dir.path().join("view.json");
+            std::fs::write(&path, &text).unwrap();
+            if let Ok(state) = ViewState::load(&path) {
+                std::fs::write(&path, serde_json::to_string(&state).unwrap()).unwrap();
+                prop_assert_eq!(ViewState::load(&path).unwrap(), state);
+            }
+        }
+    }
+}

@@ -424,3 +424,35 @@ mod tests {
         assert!(lo < 2.0 && hi > 2.0);
     }
 }
+
+#[cfg(test)]
+mod fuzz {
+    //! Issue 13: colour-map files and value ranges never make the colour code panic.
+
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        #[test]
+        fn colour_map_texts_and_values_never_panic(
+            text in "\\PC{0,60}|\\[(\\[(-?[0-9.e]{1,6}|1e400|NaN), \"#[0-9a-fA-F]{0,7}\"\\],? ?){0,5}\\]",
+            values in proptest::collection::vec(prop_oneof![any::<f64>(), Just(f64::NAN), Just(f64::INFINITY), Just(1e308), Just(-0.0)], 0..20),
+        ) {
+            if let Ok(map) = ColorMap::from_stops_text(&text) {
+                for t in [f64::NAN, f64::NEG_INFINITY, -1.0, 0.0, 0.5, 1.0, 2.0, f64::INFINITY] {
+                    let _ = map.at(t);
+                }
+            }
+            let _ = ColorMap::named_or_file(&text);
+            for signed in [false, true] {
+                let scale = ColorScale::auto(&values, signed, true, 1e-12);
+                for &v in &values {
+                    let p = scale.position(v);
+                    prop_assert!(p.is_nan() || (0.0..=1.0).contains(&p), "{v} -> {p}");
+                }
+            }
+        }
+    }
+}
