@@ -88,7 +88,19 @@ fn restore_view(app: &mut App, interactive: bool) {
     }
 }
 
-fn main() -> Result<()> {
+fn main() -> std::process::ExitCode {
+    match run() {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            // One line, whatever the causes hold (issue 13).
+            let message = format!("{e:#}").replace(['\n', '\r'], " ");
+            eprintln!("error: {}", pssurf::text::cut_line(&message));
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<()> {
     let args = Args::parse();
     let (w, h) = parse_size(&args.size)?;
     let mut app = load(&args.files)?;

@@ -126,6 +126,52 @@ pub struct SceneObject {
     pub id: u64,
 }
 
+/// The largest scene or surface file the application opens (2 GiB: loading takes about
+/// eight times its size in memory).
+pub const MAX_FILE_BYTES: u64 = 2 << 30;
+/// The most read from a file without a size (a pipe, a device such as `/dev/zero`).
+pub const MAX_STREAM_BYTES: u64 = 64 << 20;
+
+/// Reads a text file of bounded size: a regular file up to [`MAX_FILE_BYTES`] (checked
+/// before reading), anything else up to [`MAX_STREAM_BYTES`] (an endless stream is refused
+/// after that much).
+pub fn read_bounded(path: &Path) -> std::io::Result<String> {
+    use std::io::{Error, ErrorKind, Read};
+    let file = std::fs::File::open(path)?;
+    let meta = file.metadata()?;
+    if meta.is_dir() {
+        return Err(Error::new(ErrorKind::IsADirectory, "is a directory"));
+    }
+    let limit = if meta.is_file() {
+        if meta.len() > MAX_FILE_BYTES {
+            return Err(Error::new(
+                ErrorKind::FileTooLarge,
+                format!(
+                    "{} bytes, more than the {MAX_FILE_BYTES} the application opens",
+                    meta.len()
+                ),
+            ));
+        }
+        MAX_FILE_BYTES
+    } else {
+        MAX_STREAM_BYTES
+    };
+    let mut bytes = Vec::new();
+    file.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(Error::new(
+            ErrorKind::FileTooLarge,
+            format!("longer than the {limit} bytes the application reads from it"),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|_| {
+        Error::new(
+            ErrorKind::InvalidData,
+            "is not UTF-8 text (a pssurf file is JSON)",
+        )
+    })
+}
+
 /// A fresh revision number, never seen before in this process.
 pub fn fresh_revision() -> u64 {
     static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
@@ -298,7 +344,7 @@ impl Scene {
 
     /// Loads a scene or surface file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let text = read_bounded(path).map_err(|source| SceneError::Io {
             path: path.display().to_string(),
             source,
         })?;

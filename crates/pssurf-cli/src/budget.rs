@@ -22,8 +22,11 @@ const TIB: u64 = 1 << 40;
 const FALLBACK_MEMORY: u64 = 4 * GIB;
 /// The default largest output file.
 const DEFAULT_OUTPUT: u64 = 16 * GIB;
-/// Memory any command needs besides its data (code, buffers, thread stacks), in bytes.
-pub const BASE_MEMORY: u64 = 64 * MIB;
+/// Memory any command needs besides its data, in bytes: 48 MB of code, buffers and loaded
+/// input, and 8 MB per worker thread (stack and allocator arenas): 64 MB on 2 cores.
+pub fn base_memory() -> u64 {
+    (48 * MIB).saturating_add(mul(8 * MIB, rayon::current_num_threads() as u64))
+}
 
 /// The `--max-memory` / `--max-output` options, accepted by every command.
 #[derive(clap::Args, Debug, Clone, Copy, Default)]
@@ -154,7 +157,7 @@ pub fn sample_estimate(
     Estimate {
         what,
         makes: format!("{} triangles", count(c.triangles)),
-        memory: BASE_MEMORY
+        memory: base_memory()
             .saturating_add(mul(c.vertices, cost.memory_per_vertex))
             .saturating_add(mul(c.triangles, cost.memory_per_triangle))
             .saturating_add(extra_memory),
@@ -165,9 +168,9 @@ pub fn sample_estimate(
 
 /// Memory to load a surface file of `file_bytes` bytes: parsing JSON and building the
 /// triangulation, PS basis and evaluation structures take at most 8 bytes per byte of file
-/// (measured: 7.2 for a 1 GB UPS file, less for small ones), plus [`BASE_MEMORY`].
+/// (measured: 7.2 for a 1 GB UPS file, less for small ones), plus [`base_memory`].
 pub fn load_memory(file_bytes: u64) -> u64 {
-    BASE_MEMORY.saturating_add(file_bytes.saturating_mul(8))
+    base_memory().saturating_add(file_bytes.saturating_mul(8))
 }
 
 /// Checks that loading the surface file at `path` fits the budget, then loads it.
@@ -184,7 +187,7 @@ pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
         .check()?;
     }
     // A device or pipe has no size: read at most what the budget allows.
-    let max_bytes = Budget::current().memory.saturating_sub(BASE_MEMORY) / 8;
+    let max_bytes = Budget::current().memory.saturating_sub(base_memory()) / 8;
     Ok(pssurf::io::load_limited(path, max_bytes)?)
 }
 

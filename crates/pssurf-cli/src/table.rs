@@ -31,7 +31,7 @@ impl Table {
             crate::budget::Estimate {
                 what: format!("reading {}", path.display()),
                 makes: format!("a file of {}", crate::budget::Bytes(meta.len())),
-                memory: crate::budget::BASE_MEMORY.saturating_add(meta.len().saturating_mul(24)),
+                memory: crate::budget::base_memory().saturating_add(meta.len().saturating_mul(24)),
                 output: 0,
             }
             .check()?;
@@ -164,7 +164,7 @@ fn open_bounded(path: &Path) -> Result<Bounded<std::io::BufReader<std::fs::File>
     let budget = crate::budget::Budget::current().memory;
     Ok(Bounded {
         inner: std::io::BufReader::new(file),
-        left: budget.saturating_sub(crate::budget::BASE_MEMORY) / 24,
+        left: budget.saturating_sub(crate::budget::base_memory()) / 24,
     })
 }
 

@@ -706,6 +706,10 @@ fn cases() -> Vec<(Case, Files)> {
         vec!["eval", "ups.json", "--at", "/dev/zero"],
         vec!["fit", "/dev/zero", "-o", "o.json"],
         vec!["fit", "/dev/urandom", "-o", "o.json"],
+        // The application, through `pssurf view`: bad files fail before any window opens.
+        vec!["view", "/dev/zero"],
+        vec!["view", "pts.csv"],
+        vec!["view", "missing.json"],
     ] {
         add(
             "malformed and truncated files",

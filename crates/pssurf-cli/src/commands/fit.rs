@@ -13,7 +13,7 @@ use pssurf::scattered::{
     smoothing_fit,
 };
 
-use crate::budget::{BASE_MEMORY, Estimate, count, mul};
+use crate::budget::{Estimate, base_memory, count, mul};
 use crate::table::{Table, read_triangles};
 
 /// How to choose the split point of each triangle.
@@ -328,7 +328,7 @@ fn fit_estimate(rows: usize, gradients: Gradients, smoothing: Option<usize>) -> 
     Estimate {
         what,
         makes: format!("{} rows", count(rows)),
-        memory: BASE_MEMORY.saturating_add(memory),
+        memory: base_memory().saturating_add(memory),
         output: mul(rows.max(smoothing.unwrap_or(0) as u64), 300),
     }
 }

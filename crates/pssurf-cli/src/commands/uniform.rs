@@ -5,7 +5,7 @@ use std::path::Path;
 use anyhow::{Result, bail};
 use pssurf::surface::{Surface, UpsSurface};
 
-use crate::budget::{BASE_MEMORY, Estimate, count, mul};
+use crate::budget::{Estimate, base_memory, count, mul};
 
 /// The uniform form of a loaded surface, or an error explaining that the command needs one.
 pub fn require<'a>(surface: &'a Surface, path: &Path, command: &str) -> Result<&'a UpsSurface> {
@@ -28,7 +28,7 @@ pub fn creation_estimate(what: String, vertices: u128, slots: u128) -> Estimate 
     Estimate {
         what,
         makes: format!("{} vertices", count(v)),
-        memory: BASE_MEMORY
+        memory: base_memory()
             .saturating_add(mul(v, 1500))
             .saturating_add(mul(s, 3)),
         output: mul(v, 300),

@@ -42,7 +42,8 @@ pub fn run(args: &ViewArgs) -> Result<()> {
             )
         })?;
     if !status.success() {
-        bail!("the application exited with {status}");
+        // The application has said why in its own line: end with its status, adding none.
+        std::process::exit(status.code().unwrap_or(1));
     }
     Ok(())
 }
