@@ -129,11 +129,7 @@ fn check_headers(path: &Path, headers: &[String]) -> Result<()> {
 
 /// A cell or name cut to its first 40 characters for a message.
 pub fn short(text: &str) -> String {
-    const MAX: usize = 40;
-    match text.char_indices().nth(MAX) {
-        Some((cut, _)) => format!("{}…", &text[..cut]),
-        None => text.to_string(),
-    }
+    pssurf::text::cut(text)
 }
 
 /// A reader that fails, rather than stops, after `left` bytes: a device or pipe (`/dev/zero`)
