@@ -8,6 +8,7 @@
 
 use std::path::PathBuf;
 
+use egui::Rect;
 use nalgebra::Point2;
 use pssurf::interrogate::CurvatureQuantity;
 use pssurf_viz::MeshFormat;
@@ -19,12 +20,13 @@ use crate::document::{Document, Selection};
 use crate::domain_view::DomainView;
 use crate::edit::{self, VertexControl};
 use crate::export::ExportDialog;
+use crate::files::{Answer, Files, Intent, Purpose};
 use crate::menu::MenuBar;
 use crate::panels::{Panel, default_panels};
 use crate::probe::Probe;
 use crate::properties::Properties;
 use crate::runtime::Runtime;
-use crate::scene::{Scene, SceneObject};
+use crate::scene::{FileKind, Scene, SceneObject};
 use crate::scene_tree::SceneTree;
 use crate::state::ViewState;
 use crate::view_settings::{DisplayPanel, ProbePanel};
@@ -52,21 +54,24 @@ pub struct Views {
     pub export: ExportDialog,
     /// The algorithm panels.
     pub panels: Vec<Box<dyn Panel>>,
+    /// The file chooser.
+    pub files: Files,
 }
 
 impl Default for Views {
     fn default() -> Self {
         Views {
-            menu: MenuBar::default(),
+            menu: MenuBar,
             scene_tree: SceneTree,
             properties: Properties::default(),
-            domain: DomainView,
+            domain: DomainView::default(),
             view3d: View3d::default(),
             display: DisplayPanel,
             probe: ProbePanel,
             new_surface: NewSurface::default(),
             export: ExportDialog::default(),
             panels: default_panels(),
+            files: Files::default(),
         }
     }
 }
@@ -89,6 +94,16 @@ pub struct App {
     pub autosave: Option<PathBuf>,
     /// Where the view settings are saved on exit (None: not saved).
     pub view_file: Option<PathBuf>,
+    /// What waits for the answer to the unsaved-changes question.
+    pub pending: Option<Intent>,
+    /// What to do once the document is saved (the question was answered "Save").
+    after_save: Option<Intent>,
+    /// Set when the window may close (the question was answered, or nothing was unsaved).
+    closing: bool,
+    /// The window title last sent.
+    title_sent: String,
+    /// Where the parts of the window were drawn in the last frame.
+    pub layout: Layout,
     pending_frame: Option<FrameTarget>,
     last_autosave: f64,
 }
@@ -96,13 +111,19 @@ pub struct App {
 impl App {
     /// An application showing `scene`, with default view settings.
     pub fn new(scene: Scene, path: Option<PathBuf>) -> Self {
-        let mut views = Views::default();
-        views.menu.path_text = path
-            .as_ref()
-            .map(|p| p.display().to_string())
-            .unwrap_or_default();
+        App::with_document(Document::new(scene, path))
+    }
+
+    /// An application showing the file `path` (a surface or scene file, `kind`) holding
+    /// `scene`.
+    pub fn from_file(scene: Scene, path: PathBuf, kind: FileKind) -> Self {
+        App::with_document(Document::from_file(scene, path, kind))
+    }
+
+    fn with_document(doc: Document) -> Self {
+        let views = Views::default();
         App {
-            doc: Document::new(scene, path),
+            doc,
             view: ViewState::default(),
             runtime: Runtime::default(),
             views,
@@ -110,6 +131,11 @@ impl App {
             error: None,
             autosave: None,
             view_file: None,
+            pending: None,
+            after_save: None,
+            closing: false,
+            title_sent: String::new(),
+            layout: Layout::default(),
             pending_frame: Some(FrameTarget::All),
             last_autosave: 0.0,
         }
@@ -152,29 +178,168 @@ impl App {
         self.runtime.gpu = Some(state);
     }
 
-    /// Opens a scene or surface file, replacing the document; a bad file leaves the scene
-    /// unchanged and shows the message.
-    pub fn open(&mut self, path: PathBuf) {
-        match Scene::load(&path) {
-            Ok(scene) => {
-                self.doc = Document::new(scene, Some(path.clone()));
-                self.views.menu.path_text = path.display().to_string();
-                self.status = format!("opened {}", path.display());
-                self.pending_frame = Some(FrameTarget::All);
-            }
-            Err(e) => self.error = Some(format!("Could not open the file.\n\n{e}")),
+    /// The window title: the document's name, `*` first when it has unsaved changes.
+    pub fn title(&self) -> String {
+        let mark = if self.doc.dirty { "*" } else { "" };
+        format!("{mark}{} — pssurf", self.doc.name())
+    }
+
+    /// Asks for `intent`. When it would replace a document with unsaved changes, the
+    /// question (save, discard, cancel) is asked first and the intent waits for its answer.
+    pub fn request(&mut self, intent: Intent) {
+        if self.doc.dirty {
+            self.pending = Some(intent);
+        } else {
+            self.carry_out(intent);
         }
     }
 
-    /// Saves to `path` (atomically).
-    pub fn save(&mut self, path: PathBuf) {
-        match self.doc.scene.save(&path) {
-            Ok(()) => {
-                self.status = format!("saved {}", path.display());
-                self.doc.path = Some(path);
-                self.doc.dirty = false;
+    fn carry_out(&mut self, intent: Intent) {
+        match intent {
+            Intent::Open(path) => self.open(path),
+            Intent::New => {
+                self.doc = Document::default();
+                self.runtime.probe.clear();
+                self.error = None;
+                self.status = "new scene".into();
             }
-            Err(e) => self.error = Some(format!("Could not save.\n\n{e}")),
+            Intent::Quit => self.closing = true,
+        }
+    }
+
+    /// Goes on with what waited for the unsaved-changes question.
+    pub fn answer(&mut self, answer: Answer) {
+        let Some(intent) = self.pending.take() else {
+            return;
+        };
+        match answer {
+            Answer::Cancel => self.status = "cancelled: the changes are kept".into(),
+            Answer::Discard => self.carry_out(intent),
+            Answer::Save => {
+                self.after_save = Some(intent);
+                self.save();
+            }
+        }
+    }
+
+    /// Opens a scene or surface file, replacing the document (without asking: see
+    /// [`App::request`]); a bad file leaves the document unchanged and says why.
+    pub fn open(&mut self, path: PathBuf) {
+        match Scene::load_file(&path) {
+            Ok((scene, kind)) => {
+                self.doc = Document::from_file(scene, path.clone(), kind);
+                self.runtime.probe.clear();
+                crate::files::remember(&mut self.view.recent, &path);
+                self.error = None;
+                self.status = format!("opened {} ({})", path.display(), kind.name());
+                self.pending_frame = Some(FrameTarget::All);
+            }
+            Err(e) => {
+                self.status = format!("could not open {}", path.display());
+                self.error = Some(format!("Could not open the file.\n\n{e}"));
+            }
+        }
+    }
+
+    /// Adds the objects of a scene or surface file to the scene (one undo step), beside the
+    /// objects already there.
+    pub fn add_file(&mut self, path: &std::path::Path) {
+        match Scene::load(path) {
+            Ok(loaded) => {
+                let n = loaded.objects.len();
+                self.add_objects(loaded.objects, "add file");
+                self.error = None;
+                self.status = format!("added {n} object(s) from {}", path.display());
+            }
+            Err(e) => {
+                self.status = format!("could not add {}", path.display());
+                self.error = Some(format!("Could not add the file.\n\n{e}"));
+            }
+        }
+    }
+
+    /// Saves the document to its file, of its kind. Asks where (Save As) when it has no file
+    /// yet, or when its file is a surface file that cannot hold the scene any more.
+    pub fn save(&mut self) {
+        let fits = self.doc.scene.surface_file_problem();
+        match (self.doc.path.clone(), self.doc.kind, fits) {
+            (Some(path), FileKind::Scene, _) => self.save_to(path, FileKind::Scene),
+            (Some(path), FileKind::Surface, None) => self.save_to(path, FileKind::Surface),
+            (Some(_), FileKind::Surface, Some(why)) => {
+                self.status = format!("{why}: choose where to save it as a scene");
+                self.save_as(FileKind::Scene);
+            }
+            (None, kind, _) => self.save_as(kind),
+        }
+    }
+
+    /// Opens the chooser to save as a file of `kind` (a scene when a surface file cannot
+    /// hold the scene).
+    pub fn save_as(&mut self, kind: FileKind) {
+        let kind = match self.doc.scene.surface_file_problem() {
+            Some(_) => FileKind::Scene,
+            None => kind,
+        };
+        let name = match (&self.doc.path, kind == self.doc.kind) {
+            (Some(p), true) => crate::files::file_name(p),
+            _ => self.suggested_stem() + ".json",
+        };
+        let folder = self.doc.path.as_ref().and_then(|p| p.parent());
+        let folder = folder.map(std::path::Path::to_path_buf);
+        self.views
+            .files
+            .choose(Purpose::SaveAs(kind), folder.as_deref(), &name);
+    }
+
+    /// A file stem for a new file: the document's, else the only object's name, else
+    /// "scene".
+    fn suggested_stem(&self) -> String {
+        let stem = match (&self.doc.path, self.doc.scene.objects.as_slice()) {
+            (Some(p), _) => p
+                .file_stem()
+                .map_or("scene".into(), |s| s.to_string_lossy().into_owned()),
+            (None, [o]) => o.name.clone(),
+            _ => "scene".into(),
+        };
+        stem.replace(
+            |c: char| !(c.is_alphanumeric() || c == '-' || c == '_'),
+            "_",
+        )
+    }
+
+    /// Saves to `path` as a file of `kind` (atomically); the file becomes the document's.
+    pub fn save_to(&mut self, path: PathBuf, kind: FileKind) {
+        match self.doc.scene.save_as(&path, kind) {
+            Ok(()) => {
+                self.status = format!("saved {} ({})", path.display(), kind.name());
+                crate::files::remember(&mut self.view.recent, &path);
+                self.doc.path = Some(path);
+                self.doc.kind = kind;
+                self.doc.dirty = false;
+                self.error = None;
+                if let Some(intent) = self.after_save.take() {
+                    self.carry_out(intent);
+                }
+            }
+            Err(e) => {
+                self.after_save = None;
+                self.status = format!("not saved: {e}");
+                self.error = Some(format!("Could not save.\n\n{e}"));
+            }
+        }
+    }
+
+    /// Runs files dropped on the window: one file on an empty, unmodified document opens
+    /// it; otherwise their objects are added to the scene.
+    pub fn dropped(&mut self, paths: Vec<PathBuf>) {
+        if let [path] = paths.as_slice()
+            && self.doc.scene.objects.is_empty()
+            && !self.doc.dirty
+        {
+            return self.open(path.clone());
+        }
+        for p in paths {
+            self.add_file(&p);
         }
     }
 
@@ -269,6 +434,16 @@ impl App {
         self.runtime.cache.scene_size()
     }
 
+    /// The legend shown beside the view: the shared one, or the selected object's (None
+    /// outside curvature plots).
+    pub fn legend(&self) -> Option<&crate::display::Legend> {
+        let cache = &self.runtime.cache;
+        match self.view.display.mode {
+            ViewMode::Curvature(_) => cache.legend(&self.doc.scene, self.doc.selection.object),
+            _ => None,
+        }
+    }
+
     /// The probe, if one is set.
     pub fn probe(&self) -> Option<&Probe> {
         self.runtime.probe.probe.as_ref()
@@ -279,8 +454,10 @@ impl App {
         let size = self.scene_size();
         let scene = &self.doc.scene;
         if (self.runtime.probe).set(scene, object, uv, &self.view.probe, size) {
-            self.doc.selection.object = Some(object);
             self.status = format!("probed {}", scene.objects[object].name);
+            if self.doc.selection.object != Some(object) {
+                self.doc.select(Selection::object(object));
+            }
         }
     }
 
@@ -316,8 +493,14 @@ impl App {
         }
     }
 
-    /// Writes the selected object's mesh (see [`crate::export::export_mesh`]).
-    pub fn export_mesh(&self, path: &std::path::Path, format: MeshFormat) -> Result<(), String> {
+    /// Writes the selected object's mesh with the current colours and fields (see
+    /// [`crate::export::export_mesh`]).
+    pub fn export_mesh(
+        &mut self,
+        path: &std::path::Path,
+        format: MeshFormat,
+    ) -> Result<(), String> {
+        self.update_geometry();
         let (doc, display) = (&self.doc, &self.view.display);
         crate::export::export_mesh(doc, display, &self.runtime.cache, path, format)
     }
@@ -330,7 +513,7 @@ impl App {
     /// Applies one command (see [`Command`] for what each asks).
     pub fn apply(&mut self, command: Command) {
         match command {
-            Command::Select(s) => self.doc.selection = s,
+            Command::Select(s) => self.doc.select(s),
             Command::SetProbe { object, uv } => self.set_probe(object, uv),
             Command::RemoveProbe => self.runtime.probe.clear(),
             Command::SetVertex {
@@ -338,7 +521,11 @@ impl App {
                 vertex,
                 control,
             } => self.report(|app| app.set_vertex(object, vertex, control)),
-            Command::StartDrag => self.doc.checkpoint("drag control point"),
+            Command::StartDrag => {
+                self.doc.checkpoint("drag control point");
+                self.runtime.cache.hold_colors = true;
+            }
+            Command::EndDrag => self.runtime.cache.hold_colors = false,
             Command::DragVertex {
                 object,
                 vertex,
@@ -355,9 +542,27 @@ impl App {
                 status,
             } => self.replace_surface(object, what, *surface, status),
             Command::Frame(target) => self.pending_frame = Some(target),
-            Command::Open(path) => self.open(path),
+            Command::Open(path) => self.request(Intent::Open(path)),
+            Command::New => self.request(Intent::New),
+            Command::Quit => self.request(Intent::Quit),
+            Command::AddFile(path) => self.add_file(&path),
+            Command::Choose(Purpose::SaveAs(kind)) => self.save_as(kind),
+            Command::Choose(purpose) => {
+                let folder = self.doc.path.as_ref().and_then(|p| p.parent());
+                let folder = folder.map(std::path::Path::to_path_buf);
+                let name = self.views.export.file_name();
+                self.views.files.choose(purpose, folder.as_deref(), &name);
+            }
             Command::RecoverAutosave => self.recover_autosave(),
-            Command::Save(path) => self.save(path),
+            Command::Save => self.save(),
+            Command::SaveTo { path, kind } => self.save_to(path, kind),
+            Command::SaveCancelled => {
+                if self.after_save.take().is_some() {
+                    self.status = "not saved: nothing else was done".into();
+                }
+            }
+            Command::Answer(a) => self.answer(a),
+            Command::SetExportPath(path) => self.views.export.path = path.display().to_string(),
             Command::Undo => self.undo(),
             Command::Redo => self.redo(),
             Command::SetDisplay(d) => self.view.display = d,
@@ -368,6 +573,10 @@ impl App {
             Command::OpenExport(what) => self.views.export.open(what, &self.doc),
             Command::ExportMesh { path, format } => {
                 let result = self.export_mesh(&path, format);
+                self.exported(&path, result);
+            }
+            Command::ExportSurface { path } => {
+                let result = crate::export::export_surface(&self.doc, &path);
                 self.exported(&path, result);
             }
             Command::ExportPicture { path, size } => {
@@ -438,12 +647,27 @@ impl App {
 
     fn add(&mut self, object: SceneObject) {
         let name = object.name.clone();
-        let _ = self.doc.edit::<()>("new surface", |scene| {
-            scene.objects.push(object);
+        self.add_objects(vec![object], "new surface");
+        self.status = format!("created {name}");
+    }
+
+    /// Adds objects as one undo step, placed together beside the visible objects (to the
+    /// right, along x, centred in y), selects the first, and frames the view.
+    fn add_objects(&mut self, mut objects: Vec<SceneObject>, what: &str) {
+        if objects.is_empty() {
+            return;
+        }
+        self.update_geometry();
+        if let Some(existing) = self.runtime.cache.bounds() {
+            crate::display::place_beside(&mut objects, existing);
+        }
+        let first = self.doc.scene.objects.len();
+        let _ = self.doc.edit::<()>(what, |scene| {
+            scene.objects.extend(objects);
             Ok(())
         });
-        self.doc.selection = Selection::object(self.doc.scene.objects.len() - 1);
-        self.status = format!("created {name}");
+        self.doc.select(Selection::object(first));
+        self.pending_frame = Some(FrameTarget::All);
     }
 
     fn replace_surface(
@@ -467,6 +691,8 @@ impl App {
         if let Some(p) = self.autosave.clone() {
             self.open(p);
             self.doc.path = None;
+            self.doc.kind = FileKind::Scene;
+            self.doc.dirty = true;
         }
     }
 
@@ -476,12 +702,16 @@ impl App {
                 self.status = format!("wrote {}", path.display());
                 self.views.export.open = false;
             }
-            Err(e) => self.error = Some(format!("Could not export.\n\n{e}")),
+            Err(e) => {
+                self.status = format!("not exported: {e}");
+                self.error = Some(format!("Could not export.\n\n{e}"));
+            }
         }
     }
 
     /// Draws the whole application, then applies what the views asked for.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
+        self.window_events(ui.ctx());
         let mut commands = self.shortcuts(ui.ctx());
         self.autosave_tick(ui.ctx());
         self.update_geometry();
@@ -498,25 +728,75 @@ impl App {
         }
     }
 
+    /// The window's title, close requests (held back while changes are unsaved) and files
+    /// dropped on it.
+    fn window_events(&mut self, ctx: &egui::Context) {
+        let title = self.title();
+        if title != self.title_sent {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title_sent = title;
+        }
+        if ctx.input(|i| i.viewport().close_requested()) && !self.closing && self.doc.dirty {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.pending.get_or_insert(Intent::Quit);
+        }
+        if self.closing {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            (i.raw.dropped_files.iter())
+                .map(|f| f.path().to_path_buf())
+                .collect()
+        });
+        if !dropped.is_empty() {
+            self.dropped(dropped);
+        }
+    }
+
+    /// Whether the application has agreed to close (nothing unsaved, or the question about
+    /// it answered).
+    pub fn closing(&self) -> bool {
+        self.closing
+    }
+
     /// Draws the panels, the 3D view and the dialogs; their requests go to `commands`.
     fn draw(&mut self, ui: &mut egui::Ui, commands: &mut Vec<Command>) {
         self.side_panels(ui, commands);
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let rect = ui.available_rect_before_wrap();
+            let legend = self.legend().cloned();
+            let (view, strip) = match legend {
+                Some(_) => rect.split_left_right_at_x(rect.right() - crate::legend::WIDTH),
+                None => (rect, Rect::NOTHING),
+            };
             if let Some(target) = self.pending_frame.take() {
-                self.frame(target, rect.width() / rect.height().max(1.0));
+                self.frame(target, view.width() / view.height().max(1.0));
             }
+            if let Some(legend) = &legend {
+                let display = &self.view.display;
+                let note = crate::legend::range_note(display, legend);
+                let map = crate::display::color_map(display);
+                crate::legend::paint(ui, strip, legend, &map, &note);
+            }
+            self.layout.view = view;
+            self.layout.legend = strip;
             let Parts { views, mut cx, .. } = self.parts(commands);
-            views.view3d.ui(ui, &mut cx);
+            let mut child = ui.new_child(egui::UiBuilder::new().max_rect(view));
+            views.view3d.ui(&mut child, &mut cx);
         });
         let Parts {
             views,
             mut cx,
             error,
+            pending,
             ..
         } = self.parts(commands);
         views.new_surface.window(ui.ctx(), &mut cx);
         views.export.window(ui.ctx(), &mut cx);
+        views.files.window(ui.ctx(), &mut cx);
+        if let Some(intent) = pending {
+            crate::files::unsaved_question(ui.ctx(), &cx.doc.name(), intent, &mut cx);
+        }
         error_window(ui.ctx(), error);
     }
 
@@ -530,6 +810,8 @@ impl App {
             autosave,
             status,
             error,
+            pending,
+            layout,
             ..
         } = self;
         Parts {
@@ -537,6 +819,8 @@ impl App {
             cx: ViewContext::new(doc, view, runtime, autosave.as_deref(), commands),
             status,
             error,
+            pending: pending.as_ref(),
+            layout,
         }
     }
 
@@ -546,6 +830,7 @@ impl App {
             views,
             mut cx,
             status,
+            layout,
             ..
         } = self.parts(commands);
         egui::Panel::top("menu").show(ui, |ui| views.menu.ui(ui, &mut cx));
@@ -558,22 +843,31 @@ impl App {
                 }
             });
         });
-        egui::Panel::left("scene")
+        // The side panels scroll (both ways) rather than grow: numbers changing width never
+        // move the panels, and at 1280×800 the content fits their default widths.
+        let left = egui::Panel::left("scene")
             .resizable(true)
-            .default_size(250.0)
+            .default_size(LEFT_WIDTH)
+            .size_range(LEFT_WIDTH * 0.8..=LEFT_WIDTH * 2.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
+                egui::ScrollArea::both().show(ui, |ui| {
                     views.scene_tree.ui(ui, &mut cx);
                     ui.separator();
                     views.properties.ui(ui, &mut cx);
                 });
             });
-        egui::Panel::right("tools")
+        let right = egui::Panel::right("tools")
             .resizable(true)
-            .default_size(320.0)
+            .default_size(RIGHT_WIDTH)
+            .size_range(RIGHT_WIDTH * 0.8..=RIGHT_WIDTH * 2.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| tools(ui, views, &mut cx));
+                egui::ScrollArea::both().show(ui, |ui| tools(ui, views, &mut cx));
             });
+        *layout = Layout {
+            left: left.response.rect,
+            right: right.response.rect,
+            ..*layout
+        };
     }
 
     /// Keyboard shortcuts: undo, redo, framing, and the camera from the keyboard (arrows
@@ -583,6 +877,22 @@ impl App {
             return Vec::new();
         }
         let mut commands = Vec::new();
+        let kind = self.doc.kind;
+        let files = ctx.input_mut(|i| {
+            let command = egui::Modifiers::COMMAND;
+            let shift_command = command | egui::Modifiers::SHIFT;
+            [
+                (i.consume_key(shift_command, egui::Key::S))
+                    .then_some(Command::Choose(Purpose::SaveAs(kind))),
+                i.consume_key(command, egui::Key::S)
+                    .then_some(Command::Save),
+                (i.consume_key(command, egui::Key::O)).then_some(Command::Choose(Purpose::Open)),
+                i.consume_key(command, egui::Key::N).then_some(Command::New),
+                i.consume_key(command, egui::Key::Q)
+                    .then_some(Command::Quit),
+            ]
+        });
+        commands.extend(files.into_iter().flatten());
         let (undo, redo, frame, frame_selection) = ctx.input_mut(|i| {
             let frame_selection = i.consume_key(egui::Modifiers::SHIFT, egui::Key::F);
             let redo = i.consume_key(
@@ -635,7 +945,38 @@ struct Parts<'a> {
     cx: ViewContext<'a>,
     status: &'a str,
     error: &'a mut Option<String>,
+    pending: Option<&'a Intent>,
+    layout: &'a mut Layout,
 }
+
+/// Where the parts of the window were drawn in the last frame (for tests of the layout).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layout {
+    /// The left panel (scene tree, properties).
+    pub left: Rect,
+    /// The right panel (domain view, display, probe, algorithm panels).
+    pub right: Rect,
+    /// The 3D view.
+    pub view: Rect,
+    /// The legend strip beside the 3D view (`Rect::NOTHING` when there is none).
+    pub legend: Rect,
+}
+
+impl Default for Layout {
+    fn default() -> Self {
+        Layout {
+            left: Rect::NOTHING,
+            right: Rect::NOTHING,
+            view: Rect::NOTHING,
+            legend: Rect::NOTHING,
+        }
+    }
+}
+
+/// The default width of the left panel, in points.
+pub const LEFT_WIDTH: f32 = 290.0;
+/// The default width of the right panel, in points.
+pub const RIGHT_WIDTH: f32 = 320.0;
 
 /// The right-hand panel: the domain view, the display and probe settings, the algorithm
 /// panels.

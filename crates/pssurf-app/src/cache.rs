@@ -8,9 +8,9 @@ use std::sync::Arc;
 use nalgebra::Vector3;
 use pssurf_viz::colormap::ColorScale;
 
-use crate::display::{self, DisplaySettings, ObjectMesh};
+use crate::display::{self, DisplaySettings, Legend, ObjectMesh, ToColor};
 use crate::gpu::FrameGeometry;
-use crate::scene::{Material, Scene};
+use crate::scene::Scene;
 
 /// The geometry of the visible objects, rebuilt only when an object or a display setting
 /// changes.
@@ -20,8 +20,14 @@ pub struct GeometryCache {
     key: Option<(Vec<(u64, bool)>, DisplaySettings)>,
     /// The combined geometry for the GPU.
     pub geometry: Arc<FrameGeometry>,
-    /// The colour scale of a curvature plot (for the legend).
-    pub scale: Option<ColorScale>,
+    /// The legends of a curvature plot: one shared scale, or one per visible object.
+    pub legends: Vec<Legend>,
+    /// Set after an edit that kept the colour scales as they were (a step of a drag): the
+    /// next [`GeometryCache::update`] fits the scales to the data again and recolours.
+    stale_colors: bool,
+    /// While set (during a drag), the colour scales hold still, so colours stay comparable
+    /// as the surface moves; they are fitted again when it is cleared.
+    pub hold_colors: bool,
     /// The diameter of the drawn meshes' bounding box at the last rebuild (0 before one).
     pub diameter: f64,
     /// Where each visible object lies in `geometry`.
@@ -59,6 +65,7 @@ impl GeometryCache {
         pieces: &[usize],
         display: &DisplaySettings,
     ) {
+        let scale = scene.objects.get(object).and_then(|o| self.scale_of(o.id));
         let Some((key, settings)) = &mut self.key else {
             return;
         };
@@ -73,7 +80,7 @@ impl GeometryCache {
             return;
         };
         let map = display::color_map(display);
-        let paint = self.scale.as_ref().map(|s| (&map, s));
+        let paint = scale.as_ref().map(|s| (&map, s));
         let changed = display::update_vertex(&mut mesh, o, display, vertex, pieces, paint);
         let g = Arc::make_mut(&mut self.geometry);
         let shift = |rs: &[std::ops::Range<usize>], by: usize| -> Vec<std::ops::Range<usize>> {
@@ -93,6 +100,28 @@ impl GeometryCache {
         );
         key[object].0 = o.revision;
         self.meshes.insert(o.revision, mesh);
+        self.stale_colors |= paint.is_some();
+    }
+
+    /// The colour scale that colours object `id` (the shared one, or its own).
+    pub fn scale_of(&self, id: u64) -> Option<ColorScale> {
+        (self.legends.iter())
+            .find(|l| l.object.as_ref().is_none_or(|(o, _)| *o == id))
+            .map(|l| l.scale)
+    }
+
+    /// The legend to show: the shared one, or the selected object's (else the first).
+    pub fn legend(&self, scene: &Scene, selected: Option<usize>) -> Option<&Legend> {
+        let id = selected.and_then(|i| scene.objects.get(i)).map(|o| o.id);
+        (self.legends.iter())
+            .find(|l| l.object.as_ref().is_none_or(|(o, _)| Some(*o) == id))
+            .or(self.legends.first())
+    }
+
+    /// Whether colour scales wait to be fitted again after a drag (see
+    /// [`GeometryCache::update`]).
+    pub fn colors_stale(&self) -> bool {
+        self.stale_colors
     }
 
     /// Rebuilds the geometry if the scene or the display settings changed.
@@ -103,9 +132,10 @@ impl GeometryCache {
             .map(|o| (o.revision, o.visible))
             .collect();
         let current = Some((key.clone(), display.clone()));
-        if self.key == current {
+        if self.key == current && (!self.stale_colors || self.hold_colors) {
             return;
         }
+        self.stale_colors = false;
         // Colour map and range changes only recolour; these need new samples.
         let sampling_changed = self.key.as_ref().is_none_or(|(_, d)| {
             d.level != display.level
@@ -125,22 +155,31 @@ impl GeometryCache {
             }
         }
         let visible: Vec<(usize, u64)> = scene.visible().map(|(i, o)| (i, o.revision)).collect();
-        let diameter = display::bounds(self.meshes.values())
+        // Sizes and colour scales come from the drawn objects only (not the hidden ones
+        // still cached).
+        let drawn = visible.iter().filter_map(|(_, r)| self.meshes.get(r));
+        let diameter = display::bounds(drawn)
             .map(|(lo, hi)| (hi - lo).norm() as f64)
+            .filter(|d| d.is_finite())
             .unwrap_or(1.0)
             .max(1e-12);
         {
-            let materials: HashMap<u64, Material> = scene
-                .objects
-                .iter()
-                .map(|o| (o.revision, o.material))
+            let objects: HashMap<u64, &crate::scene::SceneObject> =
+                scene.visible().map(|(_, o)| (o.revision, o)).collect();
+            let mut meshes: Vec<ToColor<'_>> = (self.meshes.iter_mut())
+                .filter_map(|(r, mesh)| {
+                    let o = objects.get(r)?;
+                    Some(ToColor {
+                        mesh,
+                        material: o.material,
+                        id: o.id,
+                        name: &o.name,
+                    })
+                })
                 .collect();
-            let mut meshes: Vec<(&mut ObjectMesh, Material)> = self
-                .meshes
-                .iter_mut()
-                .map(|(r, m)| (m, materials.get(r).copied().unwrap_or_default()))
-                .collect();
-            self.scale = display::colorize(&mut meshes, display, diameter);
+            // In scene order, so that per-object legends follow the tree.
+            meshes.sort_by_key(|m| scene.index_of(m.id));
+            self.legends = display::colorize(&mut meshes, display, diameter);
         }
         self.diameter = diameter;
         let mut g = FrameGeometry {
@@ -183,8 +222,12 @@ impl GeometryCache {
         }
     }
 
-    /// The bounds of the drawn meshes, if any.
+    /// The bounds of the drawn (visible) meshes at the last rebuild, if any.
     pub fn bounds(&self) -> Option<(Vector3<f32>, Vector3<f32>)> {
-        display::bounds(self.meshes.values())
+        let key = self.key.as_ref().map_or(&[][..], |(k, _)| k.as_slice());
+        let drawn = (key.iter())
+            .filter(|(_, visible)| *visible)
+            .filter_map(|(r, _)| self.meshes.get(r));
+        display::bounds(drawn)
     }
 }

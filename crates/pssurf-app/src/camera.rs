@@ -3,6 +3,12 @@
 
 use nalgebra::{Matrix4, Point3, Vector3};
 
+/// The smallest size or distance the camera uses.
+pub const MIN_SIZE: f32 = 1e-12;
+/// The largest size, distance or target coordinate the camera uses: the squared lengths
+/// that normalising a vector computes stay finite in f32 (whose largest value is 3.4e38).
+pub const MAX_SIZE: f32 = 1e18;
+
 /// An orbit camera.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
@@ -59,27 +65,110 @@ impl OrbitCamera {
         (right, back.cross(&right))
     }
 
-    /// The view matrix (world to camera).
+    /// The view matrix (world to camera), of the [`OrbitCamera::sane`] camera.
     pub fn view(&self) -> Matrix4<f32> {
-        let (_, up) = self.right_up();
-        Matrix4::look_at_rh(&Point3::from(self.eye()), &Point3::from(self.target), &up)
+        let c = self.sane();
+        let (_, up) = c.right_up();
+        Matrix4::look_at_rh(&Point3::from(c.eye()), &Point3::from(c.target), &up)
     }
 
-    /// The projection for an aspect ratio width / height (depth to wgpu's [0, 1]).
+    /// The projection for an aspect ratio width / height (depth to wgpu's [0, 1]). Never
+    /// degenerate: sizes, distance, field of view and aspect are first brought into a range
+    /// where the matrix is finite and invertible in f32 (see [`OrbitCamera::sane`]).
     pub fn projection(&self, aspect: f32) -> Matrix4<f32> {
-        let near = (self.distance * 1e-3).max(1e-6);
-        let far = self.distance * 4.0 + 4.0 * self.half_height;
-        let gl = if self.fov_deg > 0.0 {
-            Matrix4::new_perspective(aspect, self.fov_deg.to_radians(), near, far)
+        let c = self.sane();
+        let aspect = if aspect.is_finite() {
+            aspect.clamp(1e-3, 1e3)
         } else {
-            let h = self.half_height;
-            Matrix4::new_orthographic(-h * aspect, h * aspect, -h, h, near, far)
+            1.0
+        };
+        let near = (c.distance * 1e-3).max(MIN_SIZE);
+        let far = (c.distance * 4.0 + 4.0 * c.half_height).max(4.0 * near);
+        // Written out rather than nalgebra's constructors, which assert (and so panic) on
+        // views narrower than f32's epsilon.
+        let depth = far - near;
+        let gl = if c.fov_deg > 0.0 {
+            let f = 1.0 / (0.5 * c.fov_deg.to_radians()).tan();
+            Matrix4::new(
+                f / aspect,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                f,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                -(far + near) / depth,
+                -2.0 * far * (near / depth),
+                0.0,
+                0.0,
+                -1.0,
+                0.0,
+            )
+        } else {
+            let h = c.half_height;
+            Matrix4::new(
+                1.0 / (h * aspect),
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                1.0 / h,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                -2.0 / depth,
+                -(far + near) / depth,
+                0.0,
+                0.0,
+                0.0,
+                1.0,
+            )
         };
         // OpenGL's z ∈ [−1, 1] to wgpu's [0, 1].
         let fix = Matrix4::new(
             1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0,
         );
         fix * gl
+    }
+
+    /// This camera with every number usable: a non-finite target becomes the origin, sizes
+    /// and distance are clamped to [`MIN_SIZE`] … [`MAX_SIZE`] (a non-finite or non-positive
+    /// one takes the default), the field of view to 0 (orthographic) or 1° … 170°, the
+    /// angles to finite values. A scene larger than `MAX_SIZE` is seen from `MAX_SIZE` away:
+    /// drawn imperfectly, never a degenerate matrix.
+    pub fn sane(&self) -> OrbitCamera {
+        let d = OrbitCamera::default();
+        let size = |x: f32, default: f32| {
+            if x.is_finite() && x > 0.0 {
+                x.clamp(MIN_SIZE, MAX_SIZE)
+            } else {
+                default
+            }
+        };
+        let angle = |x: f32, default: f32| if x.is_finite() { x } else { default };
+        let target = if self.target.iter().all(|x| x.is_finite()) {
+            self.target.map(|x| x.clamp(-MAX_SIZE, MAX_SIZE))
+        } else {
+            Vector3::zeros()
+        };
+        // The eye must differ from the target in f32.
+        let distance = size(self.distance, d.distance).max(1e-6 * target.amax());
+        OrbitCamera {
+            target,
+            distance,
+            azimuth_deg: angle(self.azimuth_deg, d.azimuth_deg).rem_euclid(360.0),
+            elevation_deg: angle(self.elevation_deg, d.elevation_deg).clamp(-89.0, 89.0),
+            fov_deg: if self.fov_deg.is_finite() && self.fov_deg > 0.0 {
+                self.fov_deg.clamp(1.0, 170.0)
+            } else {
+                0.0
+            },
+            half_height: size(self.half_height, d.half_height),
+        }
     }
 
     /// Projection × view.
@@ -117,21 +206,33 @@ impl OrbitCamera {
     }
 
     /// Centres on bounds and fits them in a view of the given aspect ratio (width / height).
+    /// Bounds beyond what the camera can show (see [`OrbitCamera::sane`]) are fitted as far
+    /// as it can; non-finite bounds leave the camera as it is.
     pub fn frame(&mut self, lo: Vector3<f32>, hi: Vector3<f32>, aspect: f32) {
-        self.target = 0.5 * (lo + hi);
-        let r = (0.5 * (hi - lo).norm()).max(1e-6) / aspect.clamp(1e-3, 1.0);
+        if !(lo.iter().chain(hi.iter()).all(|x| x.is_finite())) {
+            return;
+        }
+        let aspect = if aspect.is_finite() { aspect } else { 1.0 };
+        // Halves first: (hi − lo) of two large f32 values may overflow.
+        self.target = (0.5 * lo + 0.5 * hi).map(|x| x.clamp(-MAX_SIZE, MAX_SIZE));
+        let half = (0.5 * hi - 0.5 * lo).map(f64::from).norm();
+        let r =
+            (half.max(1e-6) / f64::from(aspect.clamp(1e-3, 1.0))).min(f64::from(MAX_SIZE) / 4.0);
+        let r = r as f32;
         self.half_height = 1.05 * r;
         self.distance = if self.fov_deg > 0.0 {
-            1.1 * r / (0.5 * self.fov_deg.to_radians()).tan() + r
+            1.1 * r / (0.5 * self.fov_deg.clamp(1.0, 170.0).to_radians()).tan() + r
         } else {
             3.0 * r
-        };
+        }
+        .min(MAX_SIZE);
     }
 
     /// The ray (origin, unit direction) through a point of the view given in normalised
     /// device coordinates (x, y ∈ [−1, 1], y up).
     pub fn ray(&self, ndc_x: f32, ndc_y: f32, aspect: f32) -> (Vector3<f32>, Vector3<f32>) {
-        let inv = self
+        let c = self.sane();
+        let inv = c
             .view_projection(aspect)
             .try_inverse()
             .unwrap_or_else(Matrix4::identity);
@@ -139,8 +240,13 @@ impl OrbitCamera {
         let far = inv.transform_point(&Point3::new(ndc_x, ndc_y, 1.0));
         let d = (far - near)
             .try_normalize(1e-12)
-            .unwrap_or_else(|| -self.to_eye());
-        (near.coords, d)
+            .unwrap_or_else(|| -c.to_eye());
+        if near.coords.iter().chain(d.iter()).all(|x| x.is_finite()) {
+            (near.coords, d)
+        } else {
+            // A view too large or too small for f32: the ray from the eye through the target.
+            (c.eye(), -c.to_eye())
+        }
     }
 }
 
@@ -202,6 +308,52 @@ mod tests {
             assert!(off < 1e-3 * c.distance, "fov {fov}: off {off}");
             assert!((d + c.to_eye()).norm() < 1e-4);
         }
+    }
+
+    /// Issue 14: no camera state, however absurd, makes a degenerate or non-finite matrix
+    /// (nalgebra's projections assert on zero-width views).
+    #[test]
+    fn absurd_cameras_still_give_finite_matrices() {
+        let odd = [
+            0.0,
+            -0.0,
+            -1.0,
+            1e-45,
+            1e-30,
+            1e30,
+            1e18,
+            3e38,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        let mut checked = 0;
+        for &a in &odd {
+            for &b in &odd {
+                for fov in [0.0, 40.0, a, 180.0] {
+                    let c = OrbitCamera {
+                        target: Vector3::new(a, 0.0, b),
+                        distance: a,
+                        half_height: b,
+                        fov_deg: fov,
+                        azimuth_deg: b,
+                        elevation_deg: a,
+                    };
+                    for aspect in [1.5, 0.0, f32::NAN, 1e9] {
+                        let m = c.view_projection(aspect);
+                        assert!(m.iter().all(|x| x.is_finite()), "{c:?} aspect {aspect}");
+                        let (o, d) = c.ray(0.1, -0.2, aspect);
+                        assert!(o.iter().chain(d.iter()).all(|x| x.is_finite()), "{c:?}");
+                        checked += 1;
+                    }
+                }
+                let mut framed = OrbitCamera::default();
+                framed.frame(Vector3::repeat(-a), Vector3::repeat(b), 1.5);
+                assert!(framed.view_projection(1.5).iter().all(|x| x.is_finite()));
+            }
+        }
+        assert_eq!(checked, odd.len() * odd.len() * 4 * 4);
     }
 
     #[test]

@@ -1,4 +1,4 @@
-//! ExportKind views and panels may ask of the application. They read the application through a
+//! What views and panels may ask of the application. They read the application through a
 //! [`ViewContext`] and emit [`Command`]s; the application applies them after the frame, in
 //! order. So no view changes the document, the view state or the runtime while another view
 //! is drawing, and every change has one place where it happens (`App::apply`).
@@ -13,9 +13,10 @@ use crate::camera::OrbitCamera;
 use crate::display::{DisplaySettings, Light};
 use crate::document::{Document, Selection};
 use crate::edit::VertexControl;
+use crate::files::{Answer, Purpose};
 use crate::probe::{Probe, ProbeSettings};
 use crate::runtime::Runtime;
-use crate::scene::{Material, SceneObject, Transform};
+use crate::scene::{FileKind, Material, SceneObject, Transform};
 use crate::state::ViewState;
 
 /// A change to one object's properties (each one undo step).
@@ -49,13 +50,15 @@ pub enum Shape {
     Quadric,
 }
 
-/// ExportKind to export.
+/// What to export.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportKind {
     /// The selected object's mesh.
     Mesh,
     /// The 3D view as a PNG picture.
     Picture,
+    /// The selected object's surface as a surface file.
+    Surface,
 }
 
 /// A request from a view or panel, applied after the frame.
@@ -81,8 +84,11 @@ pub enum Command {
         /// The new control points.
         control: VertexControl,
     },
-    /// Start dragging a control point: one undo step for the whole drag.
+    /// Start dragging a control point: one undo step for the whole drag, and the colour
+    /// scales hold still until it ends.
     StartDrag,
+    /// The drag ended: the colour scales are fitted to the data again.
+    EndDrag,
     /// A step of a drag: set a vertex's control points without an undo step of its own.
     DragVertex {
         /// The object's index.
@@ -96,7 +102,7 @@ pub enum Command {
     EditObject {
         /// The object's index.
         object: usize,
-        /// ExportKind changes.
+        /// What changes.
         edit: ObjectEdit,
     },
     /// Show the hidden and hide the shown among these objects.
@@ -118,12 +124,35 @@ pub enum Command {
     },
     /// Fit part of the scene into the 3D view.
     Frame(FrameTarget),
-    /// Open a scene or surface file, replacing the document.
+    /// Open a scene or surface file, replacing the document (asking first about unsaved
+    /// changes).
     Open(PathBuf),
+    /// Start an empty scene (asking first about unsaved changes).
+    New,
+    /// Close the application (asking first about unsaved changes).
+    Quit,
+    /// Add the objects of a scene or surface file to the scene.
+    AddFile(PathBuf),
+    /// Open the file chooser for a purpose.
+    Choose(Purpose),
     /// Open the autosaved scene as a new, unnamed document.
     RecoverAutosave,
-    /// Save the scene.
-    Save(PathBuf),
+    /// Save the document to its file, or ask where (Save As) when it has none or its file
+    /// cannot hold it.
+    Save,
+    /// Save the document to `path` as a file of `kind`; it becomes the document's file.
+    SaveTo {
+        /// The file.
+        path: PathBuf,
+        /// Surface or scene file.
+        kind: FileKind,
+    },
+    /// The user closed a Save As chooser without choosing.
+    SaveCancelled,
+    /// The answer to the unsaved-changes question.
+    Answer(Answer),
+    /// The Export dialog's file, chosen in the file chooser.
+    SetExportPath(PathBuf),
     /// Undo the last edit.
     Undo,
     /// Redo the last undone edit.
@@ -154,13 +183,18 @@ pub enum Command {
         /// The picture's size in pixels.
         size: [u32; 2],
     },
+    /// Write the selected object's surface as a surface file.
+    ExportSurface {
+        /// The file.
+        path: PathBuf,
+    },
     /// A message for the status bar.
     Status(String),
     /// A problem shown in a window until dismissed.
     Error(String),
 }
 
-/// ExportKind a view or panel sees of the application while it draws, and where its requests go.
+/// What a view or panel sees of the application while it draws, and where its requests go.
 pub struct ViewContext<'a> {
     /// The document (scene, selection, history).
     pub doc: &'a Document,

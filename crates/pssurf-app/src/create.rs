@@ -180,13 +180,12 @@ impl NewSurface {
                 ui.add(egui::DragValue::new(&mut d.size).range(1..=200))
                     .labelled_by(l.id);
                 ui.end_row();
-                let l = ui.label("side length");
-                ui.add(
-                    egui::DragValue::new(&mut d.side_length)
-                        .speed(0.01)
-                        .range(1e-6..=1e6),
-                )
-                .labelled_by(l.id);
+                let rule = crate::fields::Rule::Within(1e-6, 1e6);
+                let side = &mut d.side_length;
+                let outcome = crate::fields::labelled(ui, "side length", side, rule, 0.01);
+                if let Some(m) = outcome.refusal() {
+                    d.error = Some(m);
+                }
                 ui.end_row();
                 match d.shape {
                     Shape::Formula => {
@@ -200,9 +199,12 @@ impl NewSurface {
                     }
                     Shape::Quadric => {
                         for (k, name) in ["a (x²)", "b (xy)", "c (y²)"].iter().enumerate() {
-                            let l = ui.label(*name);
-                            ui.add(egui::DragValue::new(&mut d.quadric[k]).speed(0.01))
-                                .labelled_by(l.id);
+                            let rule = crate::fields::Rule::Within(-1e12, 1e12);
+                            let x = &mut d.quadric[k];
+                            let outcome = crate::fields::labelled(ui, name, x, rule, 0.01);
+                            if let Some(m) = outcome.refusal() {
+                                d.error = Some(m);
+                            }
                             ui.end_row();
                         }
                     }

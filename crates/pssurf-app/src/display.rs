@@ -9,7 +9,7 @@ use pssurf::interrogate::{
     CurvatureQuantity, sample_patches, sample_pieces, triangles_per_piece, vertices_per_piece,
 };
 use pssurf::surface::{PieceKind, PiecewiseSurface};
-use pssurf_viz::colormap::{ColorMap, ColorScale};
+use pssurf_viz::colormap::{ColorMap, ColorScale, DataRange};
 use pssurf_viz::plot::{
     Overlays, Polyline, Range, cell_of_piece, cell_overlay, cell_pieces, control_overlay,
     overlay_cells, range_scale,
@@ -59,6 +59,16 @@ impl ViewMode {
         })
     }
 
+    /// The unit of the quantity shown, for the legend: curvatures are in 1/length, the
+    /// Gaussian curvature in 1/length² (None outside curvature plots).
+    pub fn unit(self) -> Option<&'static str> {
+        match self {
+            ViewMode::Curvature(CurvatureQuantity::Gaussian) => Some("1/length²"),
+            ViewMode::Curvature(_) => Some("1/length"),
+            _ => None,
+        }
+    }
+
     /// The name shown in the interface and over the legend.
     pub fn name(self) -> &'static str {
         match self {
@@ -97,6 +107,13 @@ pub struct DisplaySettings {
     pub colormap: String,
     /// The colour range.
     pub range: Range,
+    /// For the automatic range: the share of values (percent, 0 … 25) left out at each end,
+    /// so that outliers do not stretch the scale (1: the 1st to 99th percentile; 0: min/max).
+    pub tail_percent: f64,
+    /// For the automatic range of a signed quantity: symmetric about 0.
+    pub symmetric: bool,
+    /// One colour scale for all objects (comparable colours), or one per object.
+    pub shared_scale: bool,
     /// Sampling level: each PS piece becomes 4^level triangles.
     pub level: u32,
     /// Flat (per-triangle) instead of smooth normals.
@@ -122,6 +139,9 @@ impl Default for DisplaySettings {
             mode: ViewMode::Shaded,
             colormap: "coolwarm".into(),
             range: Range::Auto,
+            tail_percent: 1.0,
+            symmetric: true,
+            shared_scale: true,
             level: 2,
             flat: false,
             overlays: Overlays::default(),
@@ -239,15 +259,54 @@ pub struct Changed {
     pub lines: Vec<Span<usize>>,
 }
 
-/// The colour scale used for a curvature plot of the given values (see
-/// `pssurf_viz::plot::range_scale`).
+/// The colour scale of a curvature plot of `values` in a scene of this diameter: the fixed
+/// or contrast range of the settings, or the automatic one (the robust range of
+/// [`ColorScale::robust`] with the settings' tail and symmetry; with the seed's map, its
+/// contrast curve, see `pssurf_viz::plot::range_scale`).
 pub fn scale_for(
     settings: &DisplaySettings,
     q: CurvatureQuantity,
     values: &[f64],
     diameter: f64,
 ) -> ColorScale {
-    range_scale(settings.range, &color_map(settings), q, values, diameter)
+    let map = color_map(settings);
+    if settings.range != Range::Auto || map.name() == "seed" {
+        return range_scale(settings.range, &map, q, values, diameter);
+    }
+    let unit = 1.0 / diameter;
+    let negligible = 1e-9
+        * if q == CurvatureQuantity::Gaussian {
+            unit * unit
+        } else {
+            unit
+        };
+    let symmetric = settings.symmetric && q.is_signed();
+    ColorScale::robust(values, settings.tail_percent, symmetric, negligible)
+}
+
+/// What a legend shows: the quantity, the colour scale, whose values it colours and the
+/// data's true range under it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Legend {
+    /// The quantity.
+    pub mode: ViewMode,
+    /// The object whose values the scale was fitted to (its id and name), None when one
+    /// scale is shared by all visible objects.
+    pub object: Option<(u64, String)>,
+    /// The colour scale.
+    pub scale: ColorScale,
+    /// The values' true extremes and how many the scale clips (None: no finite value).
+    pub data: Option<DataRange>,
+}
+
+impl Legend {
+    /// The title: the quantity's name and unit, e.g. `mean curvature H [1/length]`.
+    pub fn title(&self) -> String {
+        match self.mode.unit() {
+            Some(unit) => format!("{} [{unit}]", self.mode.name()),
+            None => self.mode.name().to_string(),
+        }
+    }
 }
 
 /// The sampling level used for an object (the setting, capped by [`max_level`]).
@@ -533,33 +592,66 @@ impl Placement {
     }
 }
 
-/// Colours the meshes of a curvature plot with one scale fitted to all their values
-/// (returned for the legend); in other modes each mesh gets its material's colour.
+/// An object's mesh to colour, with what the legend needs of the object.
+pub struct ToColor<'a> {
+    /// The mesh.
+    pub mesh: &'a mut ObjectMesh,
+    /// The object's material (the colour outside curvature plots).
+    pub material: Material,
+    /// The object's id.
+    pub id: u64,
+    /// The object's name.
+    pub name: &'a str,
+}
+
+/// Colours the meshes of a curvature plot, with one scale fitted to all their values or
+/// one per mesh (`settings.shared_scale`), and returns the legends; in other modes each
+/// mesh gets its material's colour and there is no legend.
 pub fn colorize(
-    meshes: &mut [(&mut ObjectMesh, Material)],
+    meshes: &mut [ToColor<'_>],
     settings: &DisplaySettings,
     diameter: f64,
-) -> Option<ColorScale> {
+) -> Vec<Legend> {
     let ViewMode::Curvature(q) = settings.mode else {
-        for (m, material) in meshes.iter_mut() {
-            let c = material.color();
-            m.vertices.iter_mut().for_each(|v| v.color = c);
+        for m in meshes.iter_mut() {
+            let c = m.material.color();
+            m.mesh.vertices.iter_mut().for_each(|v| v.color = c);
         }
-        return None;
+        return Vec::new();
     };
-    let all: Vec<f64> = meshes
-        .iter()
-        .flat_map(|(m, _)| m.values.iter().copied())
-        .collect();
-    let scale = scale_for(settings, q, &all, diameter);
     let map = color_map(settings);
-    for (m, _) in meshes.iter_mut() {
-        for (v, x) in m.vertices.iter_mut().zip(&m.values) {
-            let [r, g, b] = map.at(scale.position(*x));
-            v.color = [r, g, b, 255];
+    let legend = |values: &[f64], object: Option<(u64, String)>| {
+        let scale = scale_for(settings, q, values, diameter);
+        Legend {
+            mode: settings.mode,
+            object,
+            data: DataRange::of(values, &scale),
+            scale,
         }
+    };
+    let legends: Vec<Legend> = if settings.shared_scale {
+        let all: Vec<f64> = (meshes.iter())
+            .flat_map(|m| m.mesh.values.iter().copied())
+            .collect();
+        vec![legend(&all, None)]
+    } else {
+        (meshes.iter())
+            .map(|m| legend(&m.mesh.values, Some((m.id, m.name.to_string()))))
+            .collect()
+    };
+    for (k, m) in meshes.iter_mut().enumerate() {
+        let scale = legends[if settings.shared_scale { 0 } else { k }].scale;
+        paint(m.mesh, &map, &scale);
     }
-    Some(scale)
+    legends
+}
+
+/// Colours a mesh's vertices by their values under a scale.
+pub fn paint(mesh: &mut ObjectMesh, map: &ColorMap, scale: &ColorScale) {
+    for (v, x) in mesh.vertices.iter_mut().zip(&mesh.values) {
+        let [r, g, b] = map.at(scale.position(*x));
+        v.color = [r, g, b, 255];
+    }
 }
 
 /// The colour map of the settings (coolwarm if the name is unknown).
@@ -575,6 +667,43 @@ fn max_level(pieces: usize) -> u32 {
         level += 1;
     }
     level
+}
+
+/// Moves `objects` together so that they sit beside the `existing` bounds: to the right
+/// along x with a gap of a tenth of the larger size, centred on them in y, at their height.
+/// Their shapes are found from a coarse sampling (level 0).
+pub fn place_beside(objects: &mut [SceneObject], existing: (Vector3<f32>, Vector3<f32>)) {
+    let coarse = DisplaySettings {
+        level: 0,
+        overlays: Overlays {
+            wire: false,
+            refinement: false,
+            control: false,
+            boundary: false,
+        },
+        ..DisplaySettings::default()
+    };
+    let meshes: Vec<ObjectMesh> = objects.iter().map(|o| object_mesh(o, &coarse)).collect();
+    let Some((lo, hi)) = bounds(&meshes) else {
+        return;
+    };
+    let (elo, ehi) = existing;
+    let size = (hi - lo).norm().max((ehi - elo).norm());
+    let shift = Vector3::new(
+        ehi.x + 0.1 * size - lo.x,
+        0.5 * (elo.y + ehi.y) - 0.5 * (lo.y + hi.y),
+        0.0,
+    )
+    .cast::<f64>();
+    if !shift.iter().all(|x| x.is_finite()) {
+        return;
+    }
+    for o in objects {
+        for (t, d) in o.transform.translate.iter_mut().zip(shift.iter()) {
+            *t += d;
+        }
+        o.touch();
+    }
 }
 
 /// The axis-aligned bounds of meshes, or None when empty.

@@ -11,7 +11,7 @@
 
 use std::path::PathBuf;
 
-use crate::scene::Scene;
+use crate::scene::{FileKind, Scene};
 
 /// How many edits can be undone.
 pub const UNDO_DEPTH: usize = 200;
@@ -51,8 +51,13 @@ pub struct Document {
     pub selection: Selection,
     /// Where it was loaded from or last saved to.
     pub path: Option<PathBuf>,
+    /// The kind of that file (a new document is a scene).
+    pub kind: FileKind,
     /// Whether it changed since it was loaded or saved.
     pub dirty: bool,
+    /// The vertex last selected in each object, by object id: selecting an object again
+    /// brings its own vertex back, never another object's.
+    vertices: std::collections::HashMap<u64, usize>,
     undo: Vec<Step>,
     redo: Vec<Step>,
 }
@@ -71,6 +76,57 @@ impl Document {
             path,
             ..Default::default()
         }
+    }
+
+    /// A document for a scene read from `path`, a file of `kind`.
+    pub fn from_file(scene: Scene, path: PathBuf, kind: FileKind) -> Self {
+        Document {
+            kind,
+            ..Document::new(scene, Some(path))
+        }
+    }
+
+    /// The name shown in the title and in questions: the file name, or "untitled".
+    pub fn name(&self) -> String {
+        self.path
+            .as_deref()
+            .map_or_else(|| "untitled".to_string(), crate::files::file_name)
+    }
+
+    /// Selects `selection`. Selecting only an object brings back the vertex last selected in
+    /// that object (the vertex selection belongs to its object).
+    pub fn select(&mut self, selection: Selection) {
+        if let Some(o) = self
+            .selection
+            .object
+            .and_then(|i| self.scene.objects.get(i))
+            && let Some(v) = self.selection.vertex
+        {
+            self.vertices.insert(o.id, v);
+        }
+        let object = selection.object.and_then(|i| self.scene.objects.get(i));
+        let vertex = match (selection.vertex, object) {
+            (Some(v), Some(o)) => {
+                self.vertices.insert(o.id, v);
+                Some(v)
+            }
+            (None, Some(o)) if selection.object != self.selection.object => {
+                self.vertices.get(&o.id).copied()
+            }
+            _ => None,
+        };
+        let vertex =
+            vertex.filter(|&v| object.is_some_and(|o| v < crate::edit::vertex_count(&o.surface)));
+        if selection.vertex.is_none()
+            && selection.object == self.selection.object
+            && let Some(o) = object
+        {
+            self.vertices.remove(&o.id);
+        }
+        self.selection = Selection {
+            object: selection.object.filter(|_| object.is_some()),
+            vertex,
+        };
     }
 
     /// Applies an edit named `what` (shown in the Edit menu). The scene before it is kept

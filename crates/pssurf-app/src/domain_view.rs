@@ -1,5 +1,13 @@
 //! The 2D domain view: the triangulation, the PS refinement, the PS-points and PS-triangles
-//! of the selected object. Clicking inside a PS-triangle selects its vertex.
+//! of the selected object. Clicking inside a PS-triangle selects its vertex; the wheel
+//! zooms about the pointer, a right or middle drag pans, a double click shows it all.
+//!
+//! The triangulation is shown at any density: the edges in view are drawn as lines up to
+//! [`VECTOR_EDGES`], beyond that rasterised into a picture of the view's pixels (each edge
+//! darkening the pixels it crosses, so dense regions read as shading), cached until the
+//! object, the zoom or the view's size change.
+
+use std::sync::Arc;
 
 use egui::{Color32, Pos2, Rect, Sense, Shape, Stroke, pos2, vec2};
 use nalgebra::Point2;
@@ -8,8 +16,11 @@ use pssurf::ps::PsBasis;
 use crate::command::{Command, ViewContext};
 use crate::document::Selection;
 
-/// Above this many triangles only the boundary and the selection are drawn.
-const DETAIL_LIMIT: usize = 20_000;
+/// The most edges in view drawn as lines; more are rasterised.
+pub const VECTOR_EDGES: usize = 20_000;
+
+/// The most triangles in view whose PS split lines are drawn.
+const SPLIT_TRIANGLES: usize = 4000;
 
 /// Maps the domain's bounding box into a screen rectangle (y up, aspect kept).
 #[derive(Clone, Copy, Debug)]
@@ -28,6 +39,22 @@ impl DomainMap {
         let used = vec2((w * scale) as f32, (h * scale) as f32);
         let origin = pos2(r.center().x - 0.5 * used.x, r.center().y + 0.5 * used.y);
         DomainMap { lo, scale, origin }
+    }
+
+    /// This map magnified `zoom` times about the domain point `center`, which goes to the
+    /// middle of `rect`.
+    pub fn zoomed(self, zoom: f64, center: Point2<f64>, rect: Rect) -> Self {
+        let scale = self.scale * zoom;
+        let c = rect.center();
+        let origin = pos2(
+            c.x - ((center.x - self.lo.x) * scale) as f32,
+            c.y + ((center.y - self.lo.y) * scale) as f32,
+        );
+        DomainMap {
+            lo: self.lo,
+            scale,
+            origin,
+        }
     }
 
     /// Domain point to screen.
@@ -65,17 +92,62 @@ pub fn pick_vertex(basis: &PsBasis, p: Point2<f64>, radius: f64) -> Option<usize
     })
 }
 
-/// The domain view.
-#[derive(Debug, Default)]
-pub struct DomainView;
+/// Where the domain view looks: a magnification and the domain point in its middle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Zoom {
+    /// The object looked at (its id): another object starts unzoomed.
+    pub object: u64,
+    /// Magnification (1: the whole domain fits).
+    pub factor: f64,
+    /// The domain point in the middle of the view.
+    pub center: Point2<f64>,
+}
+
+/// What the cached drawing of a triangulation depends on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct DrawingKey {
+    revision: u64,
+    zoom: Option<Zoom>,
+    rect: Rect,
+}
+
+/// The triangulation drawn for a view: lines, or a picture of rasterised edges with the
+/// boundary as lines.
+#[derive(Clone)]
+enum Drawing {
+    Lines(Arc<Vec<Shape>>),
+    Picture(egui::TextureHandle, Arc<Vec<Shape>>),
+}
+
+/// The domain view: its zoom and its cached drawing.
+#[derive(Default)]
+pub struct DomainView {
+    /// The zoom, if the user zoomed.
+    pub zoom: Option<Zoom>,
+    drawing: Option<(DrawingKey, Drawing)>,
+}
+
+impl std::fmt::Debug for DomainView {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("DomainView")
+            .field("zoom", &self.zoom)
+            .finish()
+    }
+}
 
 impl DomainView {
+    /// Whether the triangulation is drawn as a rasterised picture (many edges in view).
+    pub fn rasterised(&self) -> bool {
+        matches!(self.drawing, Some((_, Drawing::Picture(..))))
+    }
+
     /// Draws the domain view of the selected object; clicks go to `cx` as commands.
     pub fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         let size = vec2(ui.available_width(), ui.available_width().min(320.0));
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
         let response = response.on_hover_text(
-            "Click a PS-triangle to select its vertex; Shift+click or Shift+drag moves the probe",
+            "Click a PS-triangle to select its vertex; Shift+click or Shift+drag moves the \
+             probe; the wheel zooms, a right drag pans, a double click shows all",
         );
         response.widget_info(|| {
             egui::WidgetInfo::labeled(egui::accesskit::Role::Canvas, true, "domain view")
@@ -85,12 +157,43 @@ impl DomainView {
         let Some(i) = cx.selected() else {
             return centered_message(&painter, rect, "no object selected");
         };
-        let Some(basis) = cx.doc.scene.objects[i].surface.ps_basis() else {
+        let object = &cx.doc.scene.objects[i];
+        let Some(basis) = object.surface.ps_basis() else {
             return centered_message(&painter, rect, "the domain view shows PS surfaces");
         };
         let (lo, hi) = basis.triangulation().bounds();
-        let map = DomainMap::new(lo, hi, rect);
-        let mut shapes = triangulation_shapes(basis, &map);
+        let whole = DomainMap::new(lo, hi, rect);
+        self.zoom = self.zoom.filter(|z| z.object == object.id);
+        self.navigate(ui, &response, &whole, rect, object.id);
+        let map = match self.zoom {
+            Some(z) => whole.zoomed(z.factor, z.center, rect),
+            None => whole,
+        };
+        let key = DrawingKey {
+            revision: object.revision,
+            zoom: self.zoom,
+            rect,
+        };
+        let drawing = match &self.drawing {
+            Some((k, d)) if *k == key => d.clone(),
+            _ => {
+                let d = draw_triangulation(ui.ctx(), basis, &map, rect);
+                self.drawing = Some((key, d.clone()));
+                d
+            }
+        };
+        let mut shapes: Vec<Shape> = match &drawing {
+            Drawing::Lines(lines) => lines.as_ref().clone(),
+            Drawing::Picture(texture, boundary) => {
+                painter.image(
+                    texture.id(),
+                    rect,
+                    Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0)),
+                    Color32::WHITE,
+                );
+                boundary.as_ref().clone()
+            }
+        };
         if let Some(v) = cx.doc.selection.vertex {
             shapes.extend(selection_shapes(basis, &map, v));
         }
@@ -113,44 +216,145 @@ impl DomainView {
             cx.emit(command);
         }
     }
+
+    /// Zoom (wheel, about the pointer), pan (right or middle drag), reset (double click).
+    fn navigate(
+        &mut self,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        whole: &DomainMap,
+        rect: Rect,
+        object: u64,
+    ) {
+        if response.double_clicked() {
+            self.zoom = None;
+            return;
+        }
+        let mut z = self.zoom.unwrap_or(Zoom {
+            object,
+            factor: 1.0,
+            center: whole.to_domain(rect.center()),
+        });
+        let before = z;
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if response.hovered()
+            && scroll != 0.0
+            && let Some(pointer) = response.hover_pos()
+        {
+            let at = whole.zoomed(z.factor, z.center, rect).to_domain(pointer);
+            let factor = (z.factor * f64::from((scroll * 0.003).exp())).clamp(1.0, 1e6);
+            // Keep the domain point under the pointer where it is.
+            z.center = at + (z.center - at) * (z.factor / factor);
+            z.factor = factor;
+        }
+        if response.dragged_by(egui::PointerButton::Secondary)
+            || response.dragged_by(egui::PointerButton::Middle)
+        {
+            let d = response.drag_delta();
+            let per_pixel = 1.0 / (whole.scale * z.factor);
+            z.center.x -= f64::from(d.x) * per_pixel;
+            z.center.y += f64::from(d.y) * per_pixel;
+        }
+        if z != before {
+            self.zoom = Some(z);
+        }
+    }
 }
 
-/// The triangulation's edges (only the boundary above [`DETAIL_LIMIT`] triangles) and, for
-/// small triangulations, the PS refinement's split lines.
-fn triangulation_shapes(basis: &PsBasis, map: &DomainMap) -> Vec<Shape> {
+/// Whether the segment `a`–`b` may cross `rect` (false only when both ends lie beyond the
+/// same side).
+fn may_cross(rect: Rect, a: Pos2, b: Pos2) -> bool {
+    !((a.x < rect.left() && b.x < rect.left())
+        || (a.x > rect.right() && b.x > rect.right())
+        || (a.y < rect.top() && b.y < rect.top())
+        || (a.y > rect.bottom() && b.y > rect.bottom()))
+}
+
+/// The triangulation in view: each edge once, boundary edges darker; the PS split lines
+/// when few triangles are in view. Beyond [`VECTOR_EDGES`] edges in view, the inner edges
+/// become a picture.
+fn draw_triangulation(
+    ctx: &egui::Context,
+    basis: &PsBasis,
+    map: &DomainMap,
+    rect: Rect,
+) -> Drawing {
     let tri = basis.triangulation();
-    let detailed = tri.triangle_count() <= DETAIL_LIMIT;
     let edge = Stroke::new(1.0, Color32::from_gray(90));
+    let border = Stroke::new(1.5, Color32::from_gray(40));
     let split = Stroke::new(0.5, Color32::from_rgb(70, 110, 210));
-    let mut shapes = Vec::new();
+    let mut inner: Vec<[Pos2; 2]> = Vec::new();
+    let mut boundary: Vec<Shape> = Vec::new();
+    let mut in_view = Vec::new();
     for t in 0..tri.triangle_count() {
+        let mut seen = false;
         for k in 0..3 {
             let (a, b) = tri.edge_vertices(t, k);
-            let boundary = tri.is_boundary_edge(t, k);
-            if boundary || (detailed && a < b) {
-                shapes.push(Shape::line_segment(
-                    [map.to_screen(tri.vertex(a)), map.to_screen(tri.vertex(b))],
-                    edge,
-                ));
+            let (pa, pb) = (map.to_screen(tri.vertex(a)), map.to_screen(tri.vertex(b)));
+            if !may_cross(rect, pa, pb) {
+                continue;
+            }
+            seen = true;
+            if tri.is_boundary_edge(t, k) {
+                boundary.push(Shape::line_segment([pa, pb], border));
+            } else if a < b {
+                inner.push([pa, pb]);
             }
         }
-        if detailed && tri.triangle_count() <= 4000 {
-            let r = basis.refinement();
+        if seen {
+            in_view.push(t);
+        }
+    }
+    if inner.len() > VECTOR_EDGES {
+        let image = rasterise(&inner, rect);
+        let texture = ctx.load_texture("domain edges", image, egui::TextureOptions::LINEAR);
+        return Drawing::Picture(texture, Arc::new(boundary));
+    }
+    let mut shapes: Vec<Shape> = (inner.into_iter())
+        .map(|s| Shape::line_segment(s, edge))
+        .collect();
+    if in_view.len() <= SPLIT_TRIANGLES {
+        let r = basis.refinement();
+        for &t in &in_view {
             let z = map.to_screen(r.z(t));
             let v = tri.triangle(t);
             for k in 0..3 {
-                shapes.push(Shape::line_segment(
-                    [z, map.to_screen(tri.vertex(v[k]))],
-                    split,
-                ));
-                shapes.push(Shape::line_segment(
-                    [z, map.to_screen(r.edge_point(tri, t, k))],
-                    split,
-                ));
+                let to_vertex = [z, map.to_screen(tri.vertex(v[k]))];
+                shapes.push(Shape::line_segment(to_vertex, split));
+                let to_edge = [z, map.to_screen(r.edge_point(tri, t, k))];
+                shapes.push(Shape::line_segment(to_edge, split));
             }
         }
     }
-    shapes
+    shapes.extend(boundary);
+    Drawing::Lines(Arc::new(shapes))
+}
+
+/// Edges rasterised into a picture of `rect` (one pixel per point): each edge adds ink
+/// along its length, so a pixel crossed by many edges is dark and one crossed by a single
+/// edge is a faint line, whatever the density.
+fn rasterise(edges: &[[Pos2; 2]], rect: Rect) -> egui::ColorImage {
+    let (w, h) = (
+        rect.width().ceil().max(1.0) as usize,
+        rect.height().ceil().max(1.0) as usize,
+    );
+    let mut ink = vec![0f32; w * h];
+    for [a, b] in edges {
+        let (a, b) = (*a - rect.min, *b - rect.min);
+        let length = (b - a).length();
+        let steps = length.ceil().clamp(1.0, 4.0 * (w + h) as f32) as usize;
+        let per_step = length.max(0.3) / steps as f32;
+        for s in 0..=steps {
+            let p = a + (b - a) * (s as f32 / steps as f32);
+            if p.x >= 0.0 && p.y >= 0.0 && (p.x as usize) < w && (p.y as usize) < h {
+                ink[p.y as usize * w + p.x as usize] += 0.35 * per_step;
+            }
+        }
+    }
+    let pixels = (ink.iter())
+        .map(|&k| Color32::from_rgba_unmultiplied(50, 50, 60, (k.min(1.0) * 200.0) as u8))
+        .collect();
+    egui::ColorImage::new([w, h], pixels)
 }
 
 /// The PS-triangle of vertex `v` with its PS-points (none if there is no such vertex).

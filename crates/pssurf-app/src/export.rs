@@ -55,6 +55,7 @@ const FORMATS: [(MeshFormat, &str); 5] = [
 fn extension(d: &ExportDialog) -> &'static str {
     match d.what {
         ExportKind::Picture => "png",
+        ExportKind::Surface => "json",
         ExportKind::Mesh => FORMATS
             .iter()
             .find(|(f, _)| *f == d.format)
@@ -72,7 +73,7 @@ fn suggested_path(d: &ExportDialog, doc: &Document) -> String {
         .unwrap_or_default();
     let stem = match d.what {
         ExportKind::Picture => "view".to_string(),
-        ExportKind::Mesh => doc
+        ExportKind::Mesh | ExportKind::Surface => doc
             .selection
             .object
             .and_then(|i| doc.scene.objects.get(i))
@@ -86,8 +87,8 @@ fn suggested_path(d: &ExportDialog, doc: &Document) -> String {
 }
 
 /// Writes the selected object's mesh in scene placement: points and normals transformed,
-/// all five curvature fields (in scene units), and the plot's colours (from `cache`) in a
-/// curvature plot.
+/// all five curvature fields (in scene units), and in a curvature plot the colours of the
+/// plot (the scale of `cache`, which must be up to date: see `App::export_mesh`).
 pub fn export_mesh(
     doc: &Document,
     display: &DisplaySettings,
@@ -131,17 +132,15 @@ pub fn export_mesh(
             (q.short_name().to_string(), values)
         })
         .collect();
-    // The plot's colours, when the view shows one (the cached mesh has the same layout).
+    // The plot's colours, when the view shows one: the values sampled now, under the scale
+    // that colours the object on screen (so never stale after an edit).
     let colors: Option<Vec<[u8; 3]>> = match display.mode {
-        ViewMode::Curvature(_) => cache
-            .object_mesh(&doc.scene, i)
-            .filter(|mesh| mesh.vertices.len() == sampled.mesh.positions.len())
-            .map(|mesh| {
-                mesh.vertices
-                    .iter()
-                    .map(|v| [v.color[0], v.color[1], v.color[2]])
-                    .collect()
-            }),
+        ViewMode::Curvature(q) => cache.scale_of(o.id).map(|scale| {
+            let map = crate::display::color_map(display);
+            (sampled.quantity(q).iter())
+                .map(|x| map.at(scale.position(*x)))
+                .collect()
+        }),
         _ => None,
     };
     let mesh = FieldMesh {
@@ -156,11 +155,35 @@ pub fn export_mesh(
     atomic_write(path, Durability::Atomic, |w| {
         write_mesh(w, format, &mesh).map_err(std::io::Error::other)
     })
-    .map_err(|e| e.to_string())
+    .map_err(|e| write_error(path, &e))
 }
 
-/// Renders the 3D view (camera direction, light, mode, probe lines; without the egui legend)
-/// at `size`, with the visible objects framed to fill the picture, and writes it as PNG.
+/// Writes the selected object's surface as a surface file (its own coordinates: the
+/// placement stays in the scene).
+pub fn export_surface(doc: &Document, path: &Path) -> Result<(), String> {
+    let o = doc
+        .selection
+        .object
+        .and_then(|i| doc.scene.objects.get(i))
+        .ok_or("select an object to export")?;
+    let text = pssurf::io::to_json_string(&o.surface);
+    atomic_write_bytes(path, Durability::Durable, text.as_bytes())
+        .map_err(|e| write_error(path, &e))
+}
+
+/// "cannot write PATH: the cause in a few words".
+pub fn write_error(path: &Path, e: &std::io::Error) -> String {
+    format!(
+        "cannot write {}: {}",
+        path.display(),
+        pssurf::io::io_cause(e)
+    )
+}
+
+/// Renders the 3D view (camera direction, light, mode, probe lines) at `size`, with the
+/// visible objects framed to fill it, and writes it as PNG. A curvature plot's legend (the
+/// one shown beside the view) takes a strip on the right of the picture, so the picture's
+/// colours come with what they mean.
 pub fn export_picture(
     runtime: &mut Runtime,
     doc: &Document,
@@ -180,28 +203,55 @@ pub fn export_picture(
     runtime
         .probe
         .refresh(&doc.scene, &view.probe, cache.scene_size());
+    let legend = match view.display.mode {
+        ViewMode::Curvature(_) => cache.legend(&doc.scene, doc.selection.object).cloned(),
+        _ => None,
+    };
+    let strip = match &legend {
+        Some(_) => legend_width(size).ok_or("the picture is too small for its legend")?,
+        None => 0,
+    };
+    let scene_size = [size[0] - strip, size[1]];
     let mut framed = view.clone();
     let drawn = cache
         .ranges
         .iter()
         .filter_map(|r| cache.object_mesh(&doc.scene, r.object));
     if let Some((lo, hi)) = crate::display::bounds(drawn) {
-        framed.camera.frame(lo, hi, size[0] as f32 / size[1] as f32);
+        framed
+            .camera
+            .frame(lo, hi, scene_size[0] as f32 / scene_size[1] as f32);
     }
-    let uniforms = crate::view3d::uniforms(&framed, size);
-    let picture = crate::gpu::render_picture(
+    let uniforms = crate::view3d::uniforms(&framed, scene_size);
+    let scene = crate::gpu::render_picture(
         &state.device,
         &state.queue,
         &cache.geometry,
         &runtime.probe.lines,
         &uniforms,
-        size,
+        scene_size,
     )?;
+    let mut picture = image::RgbaImage::new(size[0], size[1]);
+    image::imageops::replace(&mut picture, &scene, 0, 0);
+    if let Some(legend) = &legend {
+        let map = crate::display::color_map(&view.display);
+        let note = crate::legend::range_note(&view.display, legend);
+        let strip_image = crate::legend::picture(legend, &map, &note, strip, size[1]);
+        let strip_image = image::DynamicImage::ImageRgb8(strip_image).to_rgba8();
+        image::imageops::replace(&mut picture, &strip_image, i64::from(scene_size[0]), 0);
+    }
     let mut png = Vec::new();
     picture
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .map_err(|e| e.to_string())?;
-    atomic_write_bytes(path, Durability::Atomic, &png).map_err(|e| e.to_string())
+    atomic_write_bytes(path, Durability::Atomic, &png).map_err(|e| write_error(path, &e))
+}
+
+/// The width of the legend strip of a picture of `size` (an eighth of the width, 150 to 400
+/// pixels), or None when the picture is too small to hold it beside a view.
+pub fn legend_width(size: [u32; 2]) -> Option<u32> {
+    let w = (size[0] / 8).clamp(150, 400);
+    (size[0] >= 2 * w && size[1] >= 120).then_some(w)
 }
 
 impl ExportDialog {
@@ -221,7 +271,13 @@ impl ExportDialog {
                 path,
                 size: self.size,
             },
+            ExportKind::Surface => Command::ExportSurface { path },
         }
+    }
+
+    /// The file name in the dialog (for the file chooser to propose).
+    pub fn file_name(&self) -> String {
+        crate::files::file_name(std::path::Path::new(self.path.trim()))
     }
 
     /// Opens the dialog with a file name suggested from the document.
@@ -237,12 +293,15 @@ impl ExportDialog {
             return;
         }
         let mut open = true;
-        let mut go = false;
+        let (mut go, mut browse) = (false, false);
         let before = (self.what, self.format);
         egui::Window::new("Export")
             .open(&mut open)
             .resizable(false)
-            .show(ctx, |ui| go = self.fields(ui));
+            .show(ctx, |ui| (go, browse) = self.fields(ui));
+        if browse {
+            cx.emit(Command::Choose(crate::files::Purpose::ExportTo));
+        }
         if (self.what, self.format) != before {
             // Keep the typed name, change the extension.
             let p = PathBuf::from(self.path.trim()).with_extension(extension(self));
@@ -256,12 +315,18 @@ impl ExportDialog {
         }
     }
 
-    /// The dialog's fields; returns whether Export was clicked.
-    fn fields(&mut self, ui: &mut egui::Ui) -> bool {
+    /// The dialog's fields; returns whether Export and Browse were clicked.
+    fn fields(&mut self, ui: &mut egui::Ui) -> (bool, bool) {
         let d = self;
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.radio_value(&mut d.what, ExportKind::Mesh, "mesh of the selected object");
             ui.radio_value(&mut d.what, ExportKind::Picture, "picture of the 3D view");
+            ui.radio_value(
+                &mut d.what,
+                ExportKind::Surface,
+                "surface file of the selected object",
+            )
+            .on_hover_text("The surface alone, in its own coordinates, as `pssurf` reads it");
         });
         match d.what {
             ExportKind::Mesh => {
@@ -278,6 +343,9 @@ impl ExportDialog {
                     "geometry only (the format has no scalar fields)"
                 });
             }
+            ExportKind::Surface => {
+                ui.weak("the placement, material and name stay in the scene");
+            }
             ExportKind::Picture => {
                 ui.horizontal(|ui| {
                     let l = ui.label("width");
@@ -289,10 +357,12 @@ impl ExportDialog {
                 });
             }
         }
+        let mut browse = false;
         ui.horizontal(|ui| {
             let l = ui.label("file");
             ui.text_edit_singleline(&mut d.path).labelled_by(l.id);
+            browse = ui.button("Browse…").clicked();
         });
-        ui.button("Export").clicked()
+        (ui.button("Export").clicked(), browse)
     }
 }

@@ -63,13 +63,16 @@ fn load(files: &[PathBuf]) -> Result<App> {
     if files.is_empty() {
         return Ok(App::demo());
     }
+    if let [file] = files {
+        let (scene, kind) = Scene::load_file(file)?;
+        return Ok(App::from_file(scene, file.clone(), kind));
+    }
+    // Several files make one new, unnamed scene.
     let mut scene = Scene::default();
     for f in files {
-        let s = Scene::load(f)?;
-        scene.objects.extend(s.objects);
+        scene.objects.extend(Scene::load(f)?.objects);
     }
-    let path = (files.len() == 1).then(|| files[0].clone());
-    Ok(App::new(scene, path))
+    Ok(App::new(scene, None))
 }
 
 /// The saved view settings of earlier sessions, unless rendering a screenshot (which must
@@ -132,7 +135,8 @@ fn run() -> Result<()> {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_inner_size([w, h])
-            .with_title("pssurf"),
+            .with_drag_and_drop(true)
+            .with_title(app.title()),
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };

@@ -1,69 +1,120 @@
-//! The menu bar: File (open, save, recover the autosave, export), New (surfaces), Edit (undo,
-//! redo) and View (framing, flat shading). Every item is a command.
-
-use std::path::PathBuf;
+//! The menu bar: File (new, open, recent files, save, save as, add a file, recover the
+//! autosave, export, quit), New (surfaces), Edit (undo, redo) and View (framing, flat
+//! shading). Every item is a command.
 
 use crate::command::{Command, ExportKind, FrameTarget, Shape, ViewContext};
+use crate::files::Purpose;
+use crate::scene::FileKind;
 
-/// The menu bar and the path typed in its File menu.
+/// The menu bar.
 #[derive(Debug, Default)]
-pub struct MenuBar {
-    /// The path typed in the File menu.
-    pub path_text: String,
-}
+pub struct MenuBar;
 
 impl MenuBar {
     /// Draws the menu bar; chosen items go to `cx` as commands.
     pub fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         egui::MenuBar::new().ui(ui, |ui| {
-            ui.menu_button("File", |ui| self.file_menu(ui, cx));
+            ui.menu_button("File", |ui| file_menu(ui, cx));
             ui.menu_button("New", |ui| new_menu(ui, cx));
             ui.menu_button("Edit", |ui| edit_menu(ui, cx));
             ui.menu_button("View", |ui| view_menu(ui, cx));
         });
     }
+}
 
-    fn file_menu(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
-        let label = ui.label("File (scene or surface .json):");
-        ui.text_edit_singleline(&mut self.path_text)
-            .labelled_by(label.id)
-            .on_hover_text("Type a path, then Open or Save");
-        ui.horizontal(|ui| {
-            let path = PathBuf::from(self.path_text.trim());
-            if ui.button("Open").clicked() {
-                cx.emit(Command::Open(path.clone()));
-            }
-            if ui.button("Save").clicked() {
-                cx.emit(Command::Save(path));
-            }
-        });
-        if let Some(p) = cx.autosave.filter(|p| p.exists())
-            && ui
-                .button("Recover autosave")
+/// A menu item with its shortcut; emits `command` when clicked.
+fn item(ui: &mut egui::Ui, cx: &mut ViewContext<'_>, text: &str, keys: &str, command: Command) {
+    if ui
+        .add(egui::Button::new(text).shortcut_text(keys))
+        .clicked()
+    {
+        cx.emit(command);
+    }
+}
+
+fn file_menu(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
+    item(ui, cx, "New scene", "Ctrl+N", Command::New);
+    item(ui, cx, "Open…", "Ctrl+O", Command::Choose(Purpose::Open));
+    ui.menu_button("Open Recent", |ui| {
+        let recent: Vec<_> = cx.view.recent.iter().filter(|p| p.exists()).collect();
+        if recent.is_empty() {
+            ui.weak("no recent files");
+        }
+        for p in recent {
+            let name = crate::files::file_name(p);
+            if ui
+                .button(name)
                 .on_hover_text(p.display().to_string())
                 .clicked()
-        {
-            cx.emit(Command::RecoverAutosave);
+            {
+                cx.emit(Command::Open(p.clone()));
+            }
         }
-        ui.separator();
-        if ui
-            .button("Export mesh…")
-            .on_hover_text("PLY, OBJ, STL, glTF or VTK, with curvature fields")
-            .clicked()
-        {
-            cx.emit(Command::OpenExport(ExportKind::Mesh));
-        }
-        if ui
-            .add_enabled(
-                cx.runtime.gpu.is_some(),
-                egui::Button::new("Export picture…"),
-            )
-            .on_hover_text("The 3D view as a PNG picture of any size")
-            .clicked()
-        {
-            cx.emit(Command::OpenExport(ExportKind::Picture));
-        }
+    });
+    ui.separator();
+    let kind = cx.doc.kind.name();
+    let save = egui::Button::new("Save").shortcut_text("Ctrl+S");
+    if ui
+        .add(save)
+        .on_hover_text(format!("Save to the document's file (a {kind})"))
+        .clicked()
+    {
+        cx.emit(Command::Save);
     }
+    let surface_problem = cx.doc.scene.surface_file_problem();
+    let as_surface = ui
+        .add_enabled(
+            surface_problem.is_none(),
+            egui::Button::new("Save As Surface…").shortcut_text("Ctrl+Shift+S"),
+        )
+        .on_hover_text("One surface in the library's format, which `pssurf` reads")
+        .on_disabled_hover_text(surface_problem.unwrap_or_default());
+    if as_surface.clicked() {
+        cx.emit(Command::Choose(Purpose::SaveAs(FileKind::Surface)));
+    }
+    if ui
+        .button("Save As Scene…")
+        .on_hover_text("All objects with their names, materials, visibility and placements")
+        .clicked()
+    {
+        cx.emit(Command::Choose(Purpose::SaveAs(FileKind::Scene)));
+    }
+    ui.separator();
+    if ui
+        .button("Add From File…")
+        .on_hover_text("Add the objects of a surface or scene file beside the others")
+        .clicked()
+    {
+        cx.emit(Command::Choose(Purpose::Add));
+    }
+    if let Some(p) = cx.autosave.filter(|p| p.exists())
+        && ui
+            .button("Recover autosave")
+            .on_hover_text(p.display().to_string())
+            .clicked()
+    {
+        cx.emit(Command::RecoverAutosave);
+    }
+    ui.separator();
+    if ui
+        .button("Export mesh…")
+        .on_hover_text("PLY, OBJ, STL, glTF or VTK, with curvature fields and colours")
+        .clicked()
+    {
+        cx.emit(Command::OpenExport(ExportKind::Mesh));
+    }
+    if ui
+        .add_enabled(
+            cx.runtime.gpu.is_some(),
+            egui::Button::new("Export picture…"),
+        )
+        .on_hover_text("The 3D view and its legend as a PNG picture of any size")
+        .clicked()
+    {
+        cx.emit(Command::OpenExport(ExportKind::Picture));
+    }
+    ui.separator();
+    item(ui, cx, "Quit", "Ctrl+Q", Command::Quit);
 }
 
 fn new_menu(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {

@@ -6,6 +6,7 @@
 use nalgebra::{Point2, Point3, Vector3};
 use pssurf::interrogate::{Curvature, SectionOptions, plane_section};
 use pssurf::surface::{Cursor, ParametricSurface};
+use pssurf::text::Significant;
 
 use crate::display::LineVertex;
 use crate::scene::Scene;
@@ -35,6 +36,16 @@ pub struct ProbeSettings {
     pub circles: bool,
     /// Draw the normal and the principal directions.
     pub glyphs: bool,
+    /// The size of the planes, sections, circles and glyphs, in percent of their default
+    /// (which follows the scene's diameter): 5 … 400.
+    pub size_percent: u32,
+}
+
+impl ProbeSettings {
+    /// The length that sets the probe's drawing sizes in a scene of diameter `diameter`.
+    pub fn reach(&self, diameter: f64) -> f64 {
+        diameter * f64::from(self.size_percent.clamp(5, 400)) / 100.0
+    }
 }
 
 impl Default for ProbeSettings {
@@ -45,6 +56,7 @@ impl Default for ProbeSettings {
             sections: true,
             circles: true,
             glyphs: true,
+            size_percent: 100,
         }
     }
 }
@@ -82,11 +94,19 @@ pub struct CrossPlanes {
 impl Probe {
     /// One line for the status bar.
     pub fn summary(&self) -> String {
-        let head = format!("u,v = ({:.4}, {:.4})", self.uv.x, self.uv.y);
+        let f = |x: f64| format!("{:<9}", Significant(x, 5));
+        let head = format!(
+            "u,v = ({}, {})",
+            Significant(self.uv.x, 5),
+            Significant(self.uv.y, 5)
+        );
         match &self.curvature {
             Some(c) => format!(
-                "{head}  K = {:.4e}  H = {:.4e}  κ1 = {:.4e}  κ2 = {:.4e}",
-                c.gaussian, c.mean, c.k1, c.k2
+                "{head}  K = {}  H = {}  κ1 = {}  κ2 = {}",
+                f(c.gaussian),
+                f(c.mean),
+                f(c.k1),
+                f(c.k2)
             ),
             None => format!("{head}  curvature undefined (singular point)"),
         }
@@ -300,7 +320,7 @@ impl ProbeState {
         settings: &ProbeSettings,
         size: f64,
     ) -> bool {
-        self.probe = probe_at(scene, object, uv, settings.alignment, size);
+        self.probe = probe_at(scene, object, uv, settings.alignment, settings.reach(size));
         self.key = None;
         self.refresh(scene, settings, size);
         self.probe.is_some()
@@ -320,12 +340,12 @@ impl ProbeState {
             let found = scene.index_of(p.id);
             let stale =
                 found.is_none_or(|i| i != p.object || scene.objects[i].revision != p.revision);
-            let realigned = self
-                .key
-                .is_some_and(|(_, s)| s.alignment != settings.alignment);
+            let realigned = self.key.is_some_and(|(_, s)| {
+                s.alignment != settings.alignment || s.size_percent != settings.size_percent
+            });
             if stale || realigned {
-                let uv = p.uv;
-                self.probe = found.and_then(|i| probe_at(scene, i, uv, settings.alignment, size));
+                let (uv, reach) = (p.uv, settings.reach(size));
+                self.probe = found.and_then(|i| probe_at(scene, i, uv, settings.alignment, reach));
             }
         }
         let key = self.probe.as_ref().map(|p| (p.revision, *settings));
@@ -335,7 +355,7 @@ impl ProbeState {
         let lines = self
             .probe
             .as_ref()
-            .map(|p| probe_lines(p, settings, size))
+            .map(|p| probe_lines(p, settings, settings.reach(size)))
             .unwrap_or_default();
         self.lines = std::sync::Arc::new(crate::gpu::LineSet {
             generation: crate::scene::fresh_revision(),

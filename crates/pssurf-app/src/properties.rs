@@ -5,6 +5,7 @@ use pssurf::surface::PiecewiseSurface;
 
 use crate::command::{Command, ObjectEdit, ViewContext};
 use crate::edit::{self, VertexControl};
+use crate::fields::{self, Rule};
 use crate::scene::{Material, SceneObject, Transform};
 
 /// Values typed into the control-point editor, kept while the edit they asked for has not
@@ -33,8 +34,12 @@ impl Properties {
         };
         let o = &cx.doc.scene.objects[i];
         ui.heading("Object");
-        for edit in object_fields(ui, o) {
+        let mut refused = Vec::new();
+        for edit in object_fields(ui, o, &mut refused) {
             cx.emit(Command::EditObject { object: i, edit });
+        }
+        for message in refused {
+            cx.status(message);
         }
         ui.separator();
         self.vertex_ui(ui, cx, i);
@@ -64,7 +69,11 @@ impl Properties {
             .as_ref()
             .map_or(current.clone(), |t| t.control.clone());
         ui.label(format!("vertex {v}"));
-        let changed = control_grid(ui, &mut c);
+        let mut refused = Vec::new();
+        let changed = control_grid(ui, &mut c, &mut refused);
+        for message in refused {
+            cx.status(message);
+        }
         if c.functional {
             ui.weak("A functional surface: only the heights of its control points can change.");
         }
@@ -85,7 +94,7 @@ impl Properties {
 }
 
 /// The name, group, material and placement fields; returns what the user changed.
-fn object_fields(ui: &mut egui::Ui, o: &SceneObject) -> Vec<ObjectEdit> {
+fn object_fields(ui: &mut egui::Ui, o: &SceneObject, refused: &mut Vec<String>) -> Vec<ObjectEdit> {
     let (mut name, mut group, mut material) = (o.name.clone(), o.group.clone(), o.material);
     let mut t = o.transform;
     ui.horizontal(|ui| {
@@ -113,7 +122,7 @@ fn object_fields(ui: &mut egui::Ui, o: &SceneObject) -> Vec<ObjectEdit> {
         o.surface.kind().name(),
         edit::vertex_count(&o.surface),
     ));
-    transform_grid(ui, &mut t);
+    transform_grid(ui, &mut t, refused);
     let mut edits = Vec::new();
     if name != o.name {
         edits.push(ObjectEdit::Rename(name));
@@ -130,36 +139,35 @@ fn object_fields(ui: &mut egui::Ui, o: &SceneObject) -> Vec<ObjectEdit> {
     edits
 }
 
-/// The move / turn / scale fields of a placement.
-fn transform_grid(ui: &mut egui::Ui, t: &mut Transform) {
+/// The move / turn / scale fields of a placement; a refused value's message goes to
+/// `refused`.
+fn transform_grid(ui: &mut egui::Ui, t: &mut Transform, refused: &mut Vec<String>) {
     egui::Grid::new("transform").num_columns(4).show(ui, |ui| {
-        for (row, values, speed) in [
-            ("move", &mut t.translate, 0.01),
-            ("turn", &mut t.rotate_deg, 0.5),
+        for (row, values, rule, speed) in [
+            ("move", &mut t.translate, Rule::Coordinate, 0.01),
+            (
+                "turn",
+                &mut t.rotate_deg,
+                Rule::Within(-36_000.0, 36_000.0),
+                0.5,
+            ),
         ] {
             ui.label(row);
             for (x, axis) in values.iter_mut().zip(["x", "y", "z"]) {
-                let value = *x;
                 let name = format!("{row} {axis}");
-                ui.add(egui::DragValue::new(x).speed(speed))
-                    .widget_info(|| labeled_value(true, value, &name));
+                refused.extend(fields::number(ui, &name, x, rule, speed).refusal());
             }
             ui.end_row();
         }
-        let label = ui.label("scale");
-        ui.add(
-            egui::DragValue::new(&mut t.scale)
-                .speed(0.01)
-                .range(1e-6..=1e6),
-        )
-        .labelled_by(label.id);
+        let rule = Rule::Within(1e-6, 1e6);
+        refused.extend(fields::labelled(ui, "scale", &mut t.scale, rule, 0.01).refusal());
         ui.end_row();
     });
 }
 
 /// The grid of control points (x, y, z and the weight of a rational surface); returns
-/// whether a field changed.
-fn control_grid(ui: &mut egui::Ui, c: &mut VertexControl) -> bool {
+/// whether a field changed, and puts a refused value's message in `refused`.
+fn control_grid(ui: &mut egui::Ui, c: &mut VertexControl, refused: &mut Vec<String>) -> bool {
     let mut changed = false;
     egui::Grid::new("control")
         .num_columns(5)
@@ -175,36 +183,21 @@ fn control_grid(ui: &mut egui::Ui, c: &mut VertexControl) -> bool {
                 ui.label(format!("Q{}", j + 1));
                 for k in 0..3 {
                     let enabled = !c.functional || k == 2;
-                    let r = ui.add_enabled(
-                        enabled,
-                        egui::DragValue::new(&mut c.points[j][k])
-                            .speed(0.005)
-                            .max_decimals(6),
-                    );
-                    let (name, value) =
-                        (format!("Q{} {}", j + 1, ["x", "y", "z"][k]), c.points[j][k]);
-                    r.widget_info(|| labeled_value(enabled, value, &name));
-                    changed |= r.changed();
+                    let name = format!("Q{} {}", j + 1, ["x", "y", "z"][k]);
+                    let x = &mut c.points[j][k];
+                    let outcome =
+                        fields::number_enabled(ui, enabled, &name, x, Rule::Coordinate, 0.005);
+                    changed |= outcome.changed();
+                    refused.extend(outcome.refusal());
                 }
                 if let Some(w) = &mut c.weights {
-                    let r = ui.add(
-                        egui::DragValue::new(&mut w[j])
-                            .speed(0.01)
-                            .range(1e-6..=1e6),
-                    );
-                    let (name, value) = (format!("Q{} weight", j + 1), w[j]);
-                    r.widget_info(|| labeled_value(true, value, &name));
-                    changed |= r.changed();
+                    let name = format!("Q{} weight", j + 1);
+                    let outcome = fields::number(ui, &name, &mut w[j], Rule::Weight, 0.01);
+                    changed |= outcome.changed();
+                    refused.extend(outcome.refusal());
                 }
                 ui.end_row();
             }
         });
     changed
-}
-
-/// Accessibility info of a number field with a name (so tests and screen readers find it).
-pub fn labeled_value(enabled: bool, value: f64, name: &str) -> egui::WidgetInfo {
-    let mut info = egui::WidgetInfo::drag_value(enabled, value);
-    info.label = Some(name.to_string());
-    info
 }

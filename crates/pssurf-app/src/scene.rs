@@ -206,6 +206,27 @@ impl SceneObject {
     }
 }
 
+/// What a file holds: one surface in the library's format (`docs/format.md`), or a scene of
+/// objects. A document keeps the kind of its file, so a surface stays a surface file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FileKind {
+    /// One surface, in the library's format (what `pssurf` reads).
+    Surface,
+    /// A scene: objects with names, materials, visibility and placements.
+    #[default]
+    Scene,
+}
+
+impl FileKind {
+    /// The name used in messages and dialogs.
+    pub fn name(self) -> &'static str {
+        match self {
+            FileKind::Surface => "surface file",
+            FileKind::Scene => "scene file",
+        }
+    }
+}
+
 /// The objects of a scene.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
@@ -217,7 +238,7 @@ pub struct Scene {
 #[derive(Debug, Error)]
 pub enum SceneError {
     /// Reading or writing failed.
-    #[error("{path}: {source}")]
+    #[error("{path}: {}", pssurf::io::io_cause(source))]
     Io {
         /// The file.
         path: String,
@@ -297,12 +318,18 @@ impl Scene {
     /// Parses a scene file, or a single surface file (which becomes a one-object scene named
     /// `name`). Every surface is validated as on loading a surface file.
     pub fn from_json(text: &str, name: &str) -> Result<Scene, String> {
+        Scene::parse(text, name).map(|(scene, _)| scene)
+    }
+
+    /// [`Scene::from_json`], also telling which kind of file the text was.
+    pub fn parse(text: &str, name: &str) -> Result<(Scene, FileKind), String> {
         let value: Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
         if value.get("format").and_then(Value::as_str) != Some(SCENE_FORMAT) {
             let surface = pssurf::io::from_json_str(text).map_err(|e| e.to_string())?;
-            return Ok(Scene {
+            let scene = Scene {
                 objects: vec![SceneObject::new(name, surface)],
-            });
+            };
+            return Ok((scene, FileKind::Surface));
         }
         let file: SceneFile = serde_json::from_value(value).map_err(|e| e.to_string())?;
         if file.version != SCENE_VERSION {
@@ -339,11 +366,16 @@ impl Scene {
                 id: fresh_revision(),
             });
         }
-        Ok(Scene { objects })
+        Ok((Scene { objects }, FileKind::Scene))
     }
 
     /// Loads a scene or surface file.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        Scene::load_file(path).map(|(scene, _)| scene)
+    }
+
+    /// Loads a scene or surface file, telling which it was.
+    pub fn load_file(path: &Path) -> Result<(Scene, FileKind), SceneError> {
         let text = read_bounded(path).map_err(|source| SceneError::Io {
             path: path.display().to_string(),
             source,
@@ -352,20 +384,57 @@ impl Scene {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        Scene::from_json(&text, &name).map_err(|message| SceneError::Invalid {
+        Scene::parse(&text, &name).map_err(|message| SceneError::Invalid {
             path: path.display().to_string(),
             message,
         })
     }
 
-    /// Saves atomically (a failed write leaves the previous file intact) and durably.
+    /// Why this scene cannot be written as a surface file (None when it can: exactly one
+    /// object, in its own coordinates).
+    pub fn surface_file_problem(&self) -> Option<String> {
+        match self.objects.as_slice() {
+            [o] if o.transform.is_identity() => None,
+            [_] => Some(
+                "the object is moved, turned or scaled, which a surface file cannot record".into(),
+            ),
+            objects => Some(format!(
+                "a surface file holds one surface, and the scene has {} objects",
+                objects.len()
+            )),
+        }
+    }
+
+    /// The text of a file of `kind` holding this scene (an error when a surface file cannot
+    /// hold it; see [`Scene::surface_file_problem`]).
+    pub fn to_file_text(&self, kind: FileKind) -> Result<String, String> {
+        match kind {
+            FileKind::Scene => Ok(self.to_json()),
+            FileKind::Surface => match self.surface_file_problem() {
+                Some(why) => Err(why),
+                None => Ok(pssurf::io::to_json_string(&self.objects[0].surface)),
+            },
+        }
+    }
+
+    /// Saves as a scene file, atomically (a failed write leaves the previous file intact)
+    /// and durably.
     pub fn save(&self, path: &Path) -> Result<(), SceneError> {
-        atomic_write_bytes(path, Durability::Durable, self.to_json().as_bytes()).map_err(|source| {
-            SceneError::Io {
-                path: path.display().to_string(),
-                source,
-            }
-        })
+        self.save_as(path, FileKind::Scene)
+    }
+
+    /// Saves as a file of `kind`, atomically and durably; a surface file only when the scene
+    /// is one object in its own coordinates.
+    pub fn save_as(&self, path: &Path, kind: FileKind) -> Result<(), SceneError> {
+        let name = path.display().to_string();
+        let text = self
+            .to_file_text(kind)
+            .map_err(|message| SceneError::Invalid {
+                path: name.clone(),
+                message,
+            })?;
+        atomic_write_bytes(path, Durability::Durable, text.as_bytes())
+            .map_err(|source| SceneError::Io { path: name, source })
     }
 }
 

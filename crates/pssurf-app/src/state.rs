@@ -26,6 +26,8 @@ pub struct ViewState {
     pub probe: ProbeSettings,
     /// Each algorithm panel's settings, by panel title (see `Panel::settings`).
     pub panels: BTreeMap<String, serde_json::Value>,
+    /// The files opened or saved most recently, newest first (File → Open Recent).
+    pub recent: Vec<PathBuf>,
 }
 
 /// The largest view-state file read (a real one is a few kilobytes).
@@ -106,6 +108,12 @@ impl ViewState {
                 return Err(format!("the contrast C = {k} must be positive and finite"));
             }
             _ => {}
+        }
+        if self.recent.len() > 4 * crate::files::RECENT {
+            return Err(format!(
+                "{} recent files is more than kept",
+                self.recent.len()
+            ));
         }
         if self.display.level > 5 {
             return Err(format!(

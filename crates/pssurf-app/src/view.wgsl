@@ -65,8 +65,10 @@ fn fs_surface(in: SurfaceOut) -> @location(0) vec4<f32> {
         let r = reflect(-v, n);
         let lat = asin(clamp(dot(r, u.axis.xyz), -1.0, 1.0));
         let band = abs(floor(lat / u.params.y) % 2.0);
-        let c = select(0.08, 0.95, band < 0.5);
-        return vec4<f32>(c, c, c, 1.0);
+        // Two real colours, neither of them the background's: ink and a warm yellow.
+        let dark = vec3<f32>(0.07, 0.08, 0.12);
+        let light = vec3<f32>(1.0, 0.86, 0.35);
+        return vec4<f32>(select(dark, light, band < 0.5), 1.0);
     }
     var base = in.color.rgb;
     // Shaded: the material's colour, its glossiness in alpha; back faces warm.

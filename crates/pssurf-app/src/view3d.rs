@@ -2,7 +2,7 @@
 //! click or F); click to probe the surface, Shift+drag to move the probe; drag the selected
 //! vertex's control points in the view plane, or with Shift along the surface normal.
 
-use egui::{Color32, Pos2, Rect, Sense, Stroke, pos2, vec2};
+use egui::{Color32, Pos2, Rect, Sense, Stroke, pos2};
 use nalgebra::{Point2, Point3, Vector3};
 
 use crate::camera::{OrbitCamera, ray_triangles};
@@ -95,7 +95,6 @@ impl View3d {
             ui.painter()
                 .circle_stroke(s, 5.0, Stroke::new(2.0, Color32::BLACK));
         }
-        legend(cx, ui, rect);
     }
 
     /// Draws the selected vertex's control points and turns drags on them into commands.
@@ -108,7 +107,9 @@ impl View3d {
     ) {
         let camera = cx.view.camera;
         let Some((object, vertex, pts)) = control_points(cx.doc) else {
-            self.drag = None;
+            if self.drag.take().is_some() {
+                cx.emit(Command::EndDrag);
+            }
             return;
         };
         let screen: Vec<Option<Pos2>> = pts.iter().map(|p| project(&camera, rect, *p)).collect();
@@ -140,6 +141,7 @@ impl View3d {
         }
         if r.drag_stopped() {
             self.drag = None;
+            cx.emit(Command::EndDrag);
             cx.status(format!("moved a control point of vertex {}", handle.vertex));
         }
     }
@@ -182,7 +184,7 @@ fn probe_planes(camera: &OrbitCamera, cx: &ViewContext<'_>, ui: &egui::Ui, rect:
         return;
     }
     let painter = ui.painter_at(rect);
-    let size = cx.runtime.cache.scene_size();
+    let size = cx.view.probe.reach(cx.runtime.cache.scene_size());
     for (k, corners) in crate::probe::plane_corners(p, size).iter().enumerate() {
         let pts: Option<Vec<Pos2>> = corners.iter().map(|c| project(camera, rect, *c)).collect();
         let Some(pts) = pts else {
@@ -373,66 +375,4 @@ pub fn drag_point(
         *p += local;
     }
     Some(c)
-}
-
-fn legend(cx: &ViewContext<'_>, ui: &egui::Ui, rect: Rect) {
-    let display = &cx.view.display;
-    let (Some(scale), ViewMode::Curvature(_)) = (&cx.runtime.cache.scale, display.mode) else {
-        return;
-    };
-    let map = crate::display::color_map(display);
-    let painter = ui.painter_at(rect);
-    let bar = Rect::from_min_size(
-        pos2(rect.right() - 90.0, rect.top() + 40.0),
-        vec2(18.0, (rect.height() - 80.0).max(40.0)),
-    );
-    let steps = 64;
-    let mut mesh = egui::Mesh::default();
-    for s in 0..=steps {
-        let t = s as f64 / steps as f64;
-        let [r, g, b] = map.at(t);
-        let y = bar.bottom() - t as f32 * bar.height();
-        let c = Color32::from_rgb(r, g, b);
-        mesh.colored_vertex(pos2(bar.left(), y), c);
-        mesh.colored_vertex(pos2(bar.right(), y), c);
-        if s > 0 {
-            let k = 2 * s as u32;
-            mesh.add_triangle(k - 2, k - 1, k);
-            mesh.add_triangle(k - 1, k, k + 1);
-        }
-    }
-    painter.add(mesh);
-    painter.rect_stroke(
-        bar,
-        0.0,
-        Stroke::new(1.0, Color32::DARK_GRAY),
-        egui::StrokeKind::Outside,
-    );
-    let ticks = pssurf_viz::legend::ticks(scale);
-    let step = ticks
-        .windows(2)
-        .map(|w| (w[1].0 - w[0].0).abs())
-        .next()
-        .unwrap_or(1.0);
-    for (value, t) in ticks {
-        let y = bar.bottom() - t as f32 * bar.height();
-        painter.line_segment(
-            [pos2(bar.right(), y), pos2(bar.right() + 4.0, y)],
-            Stroke::new(1.0, Color32::DARK_GRAY),
-        );
-        painter.text(
-            pos2(bar.right() + 6.0, y),
-            egui::Align2::LEFT_CENTER,
-            pssurf_viz::legend::format_tick(value, step),
-            egui::FontId::monospace(11.0),
-            Color32::BLACK,
-        );
-    }
-    painter.text(
-        pos2(bar.center().x, bar.top() - 8.0),
-        egui::Align2::CENTER_BOTTOM,
-        display.mode.name(),
-        egui::FontId::proportional(12.0),
-        Color32::BLACK,
-    );
 }

@@ -7,6 +7,7 @@ use pssurf_viz::plot::Range;
 
 use crate::command::{Command, ViewContext};
 use crate::display::{DisplaySettings, Light, ViewMode};
+use crate::fields::{self, Rule, compact};
 use crate::probe::{Alignment, Probe};
 
 /// The display settings panel (its state is the view state itself).
@@ -35,7 +36,13 @@ fn display_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
     ui.heading("Display");
     let mut d = cx.view.display.clone();
     let mut light = cx.view.light;
-    mode_and_colours(ui, &mut d);
+    let shown = cx
+        .runtime
+        .cache
+        .legend(&cx.doc.scene, cx.doc.selection.object)
+        .map(|l| l.scale.ends());
+    let mut refused = Vec::new();
+    mode_and_colours(ui, &mut d, shown, &mut refused);
     if d.mode == ViewMode::Shaded {
         light_ui(ui, &mut light);
     }
@@ -48,6 +55,9 @@ fn display_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         ui.checkbox(&mut d.overlays.control, "control triangles");
         ui.checkbox(&mut d.overlays.boundary, "boundary");
     });
+    for message in refused {
+        cx.status(message);
+    }
     if d != cx.view.display {
         cx.emit(Command::SetDisplay(d));
     }
@@ -56,8 +66,14 @@ fn display_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
     }
 }
 
-/// The view mode, its colour map and range or band width, and the display level.
-fn mode_and_colours(ui: &mut egui::Ui, d: &mut DisplaySettings) {
+/// The view mode, its colour map and range or band width, and the display level. `shown`
+/// is the range of the scale on screen (a fixed range starts from it).
+fn mode_and_colours(
+    ui: &mut egui::Ui,
+    d: &mut DisplaySettings,
+    shown: Option<(f64, f64)>,
+    refused: &mut Vec<String>,
+) {
     egui::ComboBox::from_label("show")
         .selected_text(d.mode.name())
         .show_ui(ui, |ui| {
@@ -80,7 +96,7 @@ fn mode_and_colours(ui: &mut egui::Ui, d: &mut DisplaySettings) {
                     ui.selectable_value(&mut d.colormap, name.to_string(), name);
                 }
             });
-        range_ui(ui, &mut d.range);
+        range_ui(ui, d, shown, refused);
     }
     if d.mode == ViewMode::Zebra {
         ui.add(egui::Slider::new(&mut d.zebra_width_deg, 1.0..=20.0).text("band width °"));
@@ -99,60 +115,90 @@ fn light_ui(ui: &mut egui::Ui, l: &mut Light) {
     }
 }
 
-/// The colour range: automatic, the seed's contrast curve with C, or a fixed interval.
-fn range_ui(ui: &mut egui::Ui, range: &mut Range) {
+/// The colour range: automatic (robust percentiles, symmetric or not), the seed's contrast
+/// curve with C, or a fixed interval (starting from the range on screen); shared by all
+/// objects or one per object.
+fn range_ui(
+    ui: &mut egui::Ui,
+    d: &mut DisplaySettings,
+    shown: Option<(f64, f64)>,
+    refused: &mut Vec<String>,
+) {
     #[derive(PartialEq)]
     enum Kind {
         Auto,
         Contrast,
         Fixed,
     }
-    let mut kind = match range {
+    let mut kind = match d.range {
         Range::Auto => Kind::Auto,
         Range::Contrast(_) => Kind::Contrast,
         Range::Fixed(..) => Kind::Fixed,
     };
-    ui.horizontal(|ui| {
-        ui.radio_value(&mut kind, Kind::Auto, "auto range")
-            .on_hover_text("Symmetric about 0 at the 98th percentile of |q| for signed quantities");
+    ui.horizontal_wrapped(|ui| {
+        ui.radio_value(&mut kind, Kind::Auto, "auto").on_hover_text(
+            "Fitted to the data whenever they change, leaving out the tails (outliers) \
+             at both ends",
+        );
         ui.radio_value(&mut kind, Kind::Contrast, "contrast C")
-            .on_hover_text("The seed's contrast curve");
-        ui.radio_value(&mut kind, Kind::Fixed, "fixed");
+            .on_hover_text(
+                "Every value in the map: t = (1 + sign(κ)(1 − e^(−C|κ|)))/2 (seed 000); \
+             a larger C shows smaller curvatures",
+            );
+        ui.radio_value(&mut kind, Kind::Fixed, "fixed")
+            .on_hover_text("A range you set, the same whatever the data");
     });
-    *range = match kind {
-        Kind::Auto => Range::Auto,
+    let (lo, hi) = shown.unwrap_or((-1.0, 1.0));
+    d.range = match kind {
+        Kind::Auto => {
+            ui.horizontal(|ui| {
+                let rule = Rule::Within(0.0, 25.0);
+                let tail = &mut d.tail_percent;
+                refused.extend(fields::labelled(ui, "tails %", tail, rule, 0.05).refusal());
+                ui.checkbox(&mut d.symmetric, "symmetric")
+                    .on_hover_text("For signed quantities: ±the larger end, 0 in the middle");
+            });
+            Range::Auto
+        }
         Kind::Contrast => {
-            let mut c = match *range {
+            let mut c = match d.range {
                 Range::Contrast(c) => c,
-                _ => 1.0,
+                // From the range on screen: C that maps its end to κ_norm = 0.9.
+                _ => std::f64::consts::LN_10 / hi.abs().max(lo.abs()).max(1e-300),
             };
             ui.horizontal(|ui| {
-                let l = ui.label("C");
-                ui.add(egui::DragValue::new(&mut c).speed(0.05).range(1e-6..=1e6))
-                    .labelled_by(l.id);
+                ui.label("C");
+                let rule = Rule::Positive(1e300);
+                refused.extend(fields::number(ui, "contrast C", &mut c, rule, 0.05).refusal());
             });
             Range::Contrast(c)
         }
         Kind::Fixed => {
-            let (mut lo, mut hi) = match *range {
+            let (mut from, mut to) = match d.range {
                 Range::Fixed(a, b) => (a, b),
-                _ => (-1.0, 1.0),
+                _ => (lo, hi),
             };
             ui.horizontal(|ui| {
-                let l = ui.label("from");
-                ui.add(egui::DragValue::new(&mut lo).speed(0.01))
-                    .labelled_by(l.id);
-                let l = ui.label("to");
-                ui.add(egui::DragValue::new(&mut hi).speed(0.01))
-                    .labelled_by(l.id);
+                ui.label("from");
+                let rule = Rule::Coordinate;
+                refused.extend(fields::number(ui, "range from", &mut from, rule, 0.01).refusal());
+                ui.label("to");
+                refused.extend(fields::number(ui, "range to", &mut to, rule, 0.01).refusal());
             });
-            // Keep the interval non-empty.
-            if hi <= lo {
-                hi = lo + 1e-9_f64.max(lo.abs() * 1e-9);
+            if to > from {
+                Range::Fixed(from, to)
+            } else {
+                refused.push(format!(
+                    "the range {} to {} is refused: it must run upwards",
+                    compact(from),
+                    compact(to)
+                ));
+                d.range
             }
-            Range::Fixed(lo, hi)
         }
     };
+    ui.checkbox(&mut d.shared_scale, "one scale for all objects")
+        .on_hover_text("Off: each object gets its own scale (the legend shows the selected one's)");
 }
 
 fn probe_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
@@ -172,6 +218,8 @@ fn probe_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         ui.checkbox(&mut s.circles, "osculating circles");
         ui.checkbox(&mut s.glyphs, "normal, directions");
     });
+    ui.add(egui::Slider::new(&mut s.size_percent, 5..=400).text("size %"))
+        .on_hover_text("The size of the planes, sections, circles and glyphs");
     if settings != cx.view.probe {
         cx.emit(Command::SetProbeSettings(settings));
     }
@@ -185,31 +233,37 @@ fn probe_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
     }
 }
 
-/// The probe's parameters, point, curvatures and normal curvatures of its cross-planes.
+/// The probe's parameters, point, curvatures and normal curvatures of its cross-planes, in
+/// a table of fixed-width columns (six significant digits, e-notation only outside
+/// 1e-3 … 1e6), with units.
 fn probe_values(ui: &mut egui::Ui, p: &Probe) {
+    let cell = |x: f64| format!("{:>12}", compact(x));
+    let triple = |v: [f64; 3]| v.map(cell).join(" ");
     egui::Grid::new("probe values")
-        .num_columns(2)
+        .num_columns(3)
+        .striped(true)
         .show(ui, |ui| {
-            let mut row = |name: &str, value: String| {
+            let mut row = |name: &str, value: String, unit: &str| {
                 ui.label(name);
                 ui.monospace(value);
+                ui.weak(unit);
                 ui.end_row();
             };
-            row("u, v", format!("{:.6}, {:.6}", p.uv.x, p.uv.y));
+            row("u, v", format!("{} {}", cell(p.uv.x), cell(p.uv.y)), "");
             let q = p.point;
-            row("point", format!("{:.5}, {:.5}, {:.5}", q.x, q.y, q.z));
+            row("point", triple([q.x, q.y, q.z]), "");
             match (&p.curvature, &p.cross) {
                 (Some(c), Some(x)) => {
-                    row("K", format!("{:.6e}", c.gaussian));
-                    row("H", format!("{:.6e}", c.mean));
-                    row("κ1", format!("{:.6e}", c.k1));
-                    row("κ2", format!("{:.6e}", c.k2));
+                    row("K", cell(c.gaussian), "1/length²");
+                    row("H", cell(c.mean), "1/length");
+                    row("κ1", cell(c.k1), "1/length");
+                    row("κ2", cell(c.k2), "1/length");
                     let n = c.normal;
-                    row("normal", format!("{:.4}, {:.4}, {:.4}", n.x, n.y, n.z));
-                    row("κn plane 1", format!("{:.6e}", x.curvatures[0]));
-                    row("κn plane 2", format!("{:.6e}", x.curvatures[1]));
+                    row("normal", triple([n.x, n.y, n.z]), "");
+                    row("κn plane 1", cell(x.curvatures[0]), "1/length");
+                    row("κn plane 2", cell(x.curvatures[1]), "1/length");
                 }
-                _ => row("curvature", "undefined (singular point)".into()),
+                _ => row("curvature", "undefined (singular point)".into(), ""),
             }
         });
 }

@@ -18,6 +18,15 @@ fn harness(app: App) -> Harness<'static, App> {
     h
 }
 
+/// Scrolls the widget labelled `label` into view, then clicks it.
+fn press(h: &mut Harness<'_, App>, label: &str) {
+    h.get_by_label(label).scroll_to_me();
+    // Scrolling is animated.
+    h.run_steps(10);
+    h.get_by_label(label).click();
+    h.run_steps(2);
+}
+
 fn click(h: &mut Harness<'_, App>, pos: Pos2) {
     h.event(Event::PointerMoved(pos));
     h.run_steps(1);
@@ -188,7 +197,7 @@ fn the_curvature_plot_toggles_and_colours_the_mesh() {
     let mut app = App::demo();
     app.view.display.mode = ViewMode::Shaded;
     let mut h = harness(app);
-    assert!(h.state().runtime.cache.scale.is_none());
+    assert!(h.state().runtime.cache.legends.is_empty());
     h.get_by_label("show").click();
     h.run_steps(2);
     h.get_by_label("mean curvature H").click();
@@ -196,7 +205,7 @@ fn the_curvature_plot_toggles_and_colours_the_mesh() {
     let app = h.state();
     assert!(matches!(app.view.display.mode, ViewMode::Curvature(_)));
     assert!(
-        app.runtime.cache.scale.is_some(),
+        !app.runtime.cache.legends.is_empty(),
         "a curvature plot has a colour scale for its legend"
     );
     let colours: std::collections::HashSet<[u8; 4]> = app
@@ -215,10 +224,8 @@ fn a_wavelet_step_from_the_panel_thresholds_and_can_be_undone() {
     let mut app = App::demo();
     // Subdivide first so that there is a level to decompose.
     let mut h = harness(app);
-    h.get_by_label("Subdivision").click();
-    h.run_steps(2);
-    h.get_by_label("Subdivide").click();
-    h.run_steps(2);
+    press(&mut h, "Subdivision");
+    press(&mut h, "Subdivide");
     let n = h.state().doc.scene.objects[0]
         .surface
         .uniform()
@@ -227,14 +234,10 @@ fn a_wavelet_step_from_the_panel_thresholds_and_can_be_undone() {
         .vertex_count();
     assert!(n > 61, "subdivided: {n} vertices");
     let smooth = h.state().doc.scene.objects[0].surface.clone();
-    h.get_by_label("Noise").click();
-    h.run_steps(2);
-    h.get_by_label("Add noise").click();
-    h.run_steps(2);
-    h.get_by_label("Wavelets").click();
-    h.run_steps(2);
-    h.get_by_label("Threshold").click();
-    h.run_steps(2);
+    press(&mut h, "Noise");
+    press(&mut h, "Add noise");
+    press(&mut h, "Wavelets");
+    press(&mut h, "Threshold");
     assert!(
         h.state().status.contains("set"),
         "status: {}",
@@ -263,7 +266,7 @@ fn saving_and_reopening_a_scene_gives_the_same_scene() {
     app.doc.scene.objects[1].name = "bowl".into();
     app.doc.scene.objects[1].group = "quadrics".into();
     app.doc.scene.objects[1].material = pssurf_app::scene::Material::Gold;
-    app.save(path.clone());
+    app.save_to(path.clone(), pssurf_app::scene::FileKind::Scene);
     assert!(app.error.is_none(), "{:?}", app.error);
     let mut other = App::new(Default::default(), None);
     other.open(path.clone());
@@ -590,7 +593,10 @@ fn the_camera_moves_from_the_keyboard() {
     h.key_press(Key::F);
     h.run_steps(2);
     assert!(
-        (h.state().view.camera.half_height - before.half_height).abs() < 1e-4 * before.half_height
+        (h.state().view.camera.half_height - before.half_height).abs() < 1e-4 * before.half_height,
+        "{:?} vs {:?}",
+        h.state().view.camera,
+        before
     );
 }
 
@@ -601,10 +607,11 @@ fn a_fixed_colour_range_and_frame_selection_from_the_ui() {
     let mut h = harness(app);
     h.get_by_label("fixed").click();
     h.run_steps(2);
-    h.get_by_label("from").set_value_accesskit(-0.5);
-    h.get_by_label("to").set_value_accesskit(2.0);
+    h.get_by_label("range from").set_value_accesskit(-0.5);
+    h.run_steps(2);
+    h.get_by_label("range to").set_value_accesskit(2.0);
     h.run_steps(3);
-    match h.state().runtime.cache.scale {
+    match h.state().runtime.cache.legends.first().map(|l| l.scale) {
         Some(pssurf_viz::colormap::ColorScale::Linear { lo, hi }) => {
             assert_eq!((lo, hi), (-0.5, 2.0));
         }

@@ -14,7 +14,7 @@ fn is_background(p: &image::Rgba<u8>) -> bool {
 
 #[test]
 fn the_demo_scene_renders_with_curvature_colours_and_a_legend() {
-    let mut h = headless::harness(App::demo(), 1000.0, 700.0);
+    let mut h = headless::harness(App::demo(), 1280.0, 800.0);
     h.run_steps(4);
     let view = {
         use egui_kittest::kittest::Queryable;
@@ -24,7 +24,7 @@ fn the_demo_scene_renders_with_curvature_colours_and_a_legend() {
     let (x0, y0, x1, y1) = (
         view.left() as u32 + 2,
         view.top() as u32 + 2,
-        view.right() as u32 - 120,
+        view.right() as u32 - 2,
         view.bottom() as u32 - 2,
     );
     let mut surface = 0;
@@ -93,18 +93,57 @@ fn export_picture_renders_the_view_offscreen_at_the_requested_size() {
     }
     let img = image::open(&path).unwrap().to_rgba8();
     assert_eq!(img.dimensions(), (640, 360));
-    let surface = img.pixels().filter(|p| !is_background(p)).count();
+    // The scene takes the picture but for the legend's strip on the right.
+    let strip = pssurf_app::export::legend_width([640, 360]).unwrap();
+    let scene_width = 640 - strip;
+    let in_scene = |x: u32| x < scene_width;
+    let surface = img
+        .enumerate_pixels()
+        .filter(|(x, _, p)| in_scene(*x) && !is_background(p))
+        .count();
     // Framed for the picture (the bounding sphere fills its height): both objects, one in
     // each half.
     assert!(surface > 640 * 360 / 30, "only {surface} surface pixels");
     let left = img
         .enumerate_pixels()
-        .filter(|(x, _, p)| *x < 320 && !is_background(p))
+        .filter(|(x, _, p)| *x < scene_width / 2 && !is_background(p))
         .count();
     assert!(
         left > surface / 5 && left < surface * 4 / 5,
         "{left} of {surface} on the left"
     );
+    legend_is_in_the_picture(&img, scene_width);
+}
+
+/// Issue 14: an exported picture of a curvature plot carries its legend: in the strip right
+/// of the scene, a vertical bar running from the colour map's start (bottom) to its end
+/// (top), and dark text (title, ticks, extremes) beside it.
+fn legend_is_in_the_picture(img: &image::RgbaImage, scene_width: u32) {
+    let map = pssurf_viz::ColorMap::named("coolwarm").unwrap();
+    let close =
+        |p: &image::Rgba<u8>, c: [u8; 3]| (0..3).all(|k| (p[k] as i32 - c[k] as i32).abs() <= 12);
+    let (w, h) = img.dimensions();
+    let strip = |pred: &dyn Fn(&image::Rgba<u8>) -> bool| {
+        (scene_width..w)
+            .flat_map(|x| (0..h).map(move |y| (x, y)))
+            .filter(|&(x, y)| pred(img.get_pixel(x, y)))
+            .map(|(_, y)| y)
+            .collect::<Vec<u32>>()
+    };
+    let top = strip(&|p| close(p, map.at(1.0)));
+    let bottom = strip(&|p| close(p, map.at(0.0)));
+    let middle = strip(&|p| close(p, map.at(0.5)));
+    assert!(
+        top.len() > 20 && bottom.len() > 20 && middle.len() > 20,
+        "bar colours missing"
+    );
+    let mean = |v: &[u32]| v.iter().map(|&y| y as f64).sum::<f64>() / v.len() as f64;
+    assert!(
+        mean(&top) < mean(&middle) && mean(&middle) < mean(&bottom),
+        "the bar runs from the map's end at the top to its start at the bottom"
+    );
+    let ink = strip(&|p| p[0] < 80 && p[1] < 80 && p[2] < 80).len();
+    assert!(ink > 150, "only {ink} dark pixels of text in the legend");
 }
 
 #[test]

@@ -64,13 +64,9 @@ pub fn write_output(
 /// The cause of a write error in a few words (`no space left on the device`), without the OS
 /// error number.
 fn io_cause(e: &anyhow::Error) -> String {
-    let io = e.chain().find_map(|c| c.downcast_ref::<std::io::Error>());
-    match io.map(|io| io.raw_os_error()) {
-        Some(Some(28)) => "no space left on the device".into(),
-        Some(Some(13)) => "permission denied".into(),
-        Some(Some(30)) => "the file system is read-only".into(),
-        Some(Some(122)) => "the disk quota is exceeded".into(),
-        _ => {
+    match e.chain().find_map(|c| c.downcast_ref::<std::io::Error>()) {
+        Some(io) => pssurf::io::io_cause(io),
+        None => {
             let text = format!("{e:#}");
             match text.find(" (os error") {
                 Some(k) => text[..k].to_string(),

@@ -324,9 +324,185 @@ impl ColorScale {
     }
 }
 
+/// The `p`-th percentile (0 … 100, nearest rank) of finite values, reordering them
+/// (O(n): selection, not sorting). None when there are none.
+pub fn percentile(values: &mut [f64], p: f64) -> Option<f64> {
+    if values.is_empty() {
+        return None;
+    }
+    let k = ((p.clamp(0.0, 100.0) / 100.0) * (values.len() - 1) as f64).round() as usize;
+    let (_, x, _) = values.select_nth_unstable_by(k, f64::total_cmp);
+    Some(*x)
+}
+
+impl ColorScale {
+    /// A linear scale over the robust range of the values (NaN and infinities ignored): from
+    /// the `tail`-th to the (100 − `tail`)-th percentile, so that a few outliers do not
+    /// stretch the scale (the values beyond it take the end colours; [`DataRange`] counts
+    /// them). With `symmetric`, the range is ±(the larger magnitude of the two), so that 0 is
+    /// the middle of a diverging map. A range narrower than `negligible` is widened to it,
+    /// so that rounding noise on a plane is not stretched over the whole map.
+    pub fn robust(values: &[f64], tail: f64, symmetric: bool, negligible: f64) -> ColorScale {
+        let mut finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+        let tail = tail.clamp(0.0, 49.0);
+        let floor = negligible.max(f64::MIN_POSITIVE);
+        let (Some(lo), Some(hi)) = (
+            percentile(&mut finite, tail),
+            percentile(&mut finite, 100.0 - tail),
+        ) else {
+            return ColorScale::Linear { lo: -1.0, hi: 1.0 };
+        };
+        if symmetric {
+            let m = lo.abs().max(hi.abs()).max(floor);
+            return ColorScale::Linear { lo: -m, hi: m };
+        }
+        if hi - lo > floor {
+            return ColorScale::Linear { lo, hi };
+        }
+        let mid = 0.5 * (lo + hi);
+        let half = floor.max(mid.abs() * 0.5).max(f64::MIN_POSITIVE);
+        ColorScale::Linear {
+            lo: mid - half,
+            hi: mid + half,
+        }
+    }
+
+    /// The values at the ends of the scale (for a contrast curve, where it reaches
+    /// κ_norm = ∓0.9).
+    pub fn ends(&self) -> (f64, f64) {
+        match *self {
+            ColorScale::Linear { lo, hi } => (lo, hi),
+            ColorScale::Contrast { c } => {
+                let m = std::f64::consts::LN_10 / c;
+                (-m, m)
+            }
+        }
+    }
+}
+
+/// The data behind a colour scale: the true extremes and how many values the scale clips.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DataRange {
+    /// The smallest finite value.
+    pub min: f64,
+    /// The largest finite value.
+    pub max: f64,
+    /// How many finite values lie below the scale's low end (shown in its first colour).
+    pub below: usize,
+    /// How many lie above its high end (shown in its last colour).
+    pub above: usize,
+    /// How many values are finite.
+    pub finite: usize,
+    /// How many are not (undefined curvature, drawn in the middle colour).
+    pub undefined: usize,
+}
+
+impl DataRange {
+    /// The range of `values` under `scale`; None when no value is finite. A contrast curve
+    /// clips nothing (it maps all reals into the map).
+    pub fn of(values: &[f64], scale: &ColorScale) -> Option<DataRange> {
+        let (lo, hi) = match scale {
+            ColorScale::Linear { lo, hi } => (*lo, *hi),
+            ColorScale::Contrast { .. } => (f64::NEG_INFINITY, f64::INFINITY),
+        };
+        let mut r = DataRange {
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            below: 0,
+            above: 0,
+            finite: 0,
+            undefined: 0,
+        };
+        for &v in values {
+            if !v.is_finite() {
+                r.undefined += 1;
+                continue;
+            }
+            r.finite += 1;
+            r.min = r.min.min(v);
+            r.max = r.max.max(v);
+            r.below += usize::from(v < lo);
+            r.above += usize::from(v > hi);
+        }
+        (r.finite > 0).then_some(r)
+    }
+
+    /// The share of finite values that the scale clips, in percent.
+    pub fn clipped_percent(&self) -> f64 {
+        100.0 * (self.below + self.above) as f64 / self.finite.max(1) as f64
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 14: one outlier (or a few, up to the tail) does not stretch the scale, and the
+    /// data range reports it as clipped.
+    #[test]
+    fn robust_ranges_ignore_outliers_and_report_them() {
+        // 1000 values uniform in [-1, 1], then 5 outliers at 26.
+        let mut v: Vec<f64> = (0..1000).map(|k| -1.0 + 2.0 * k as f64 / 999.0).collect();
+        v.extend([26.0; 5]);
+        let s = ColorScale::robust(&v, 1.0, true, 1e-9);
+        let (lo, hi) = s.ends();
+        assert!(lo == -hi && hi < 1.0 && hi > 0.97, "{s:?}");
+        let r = DataRange::of(&v, &s).unwrap();
+        assert_eq!((r.min, r.max), (-1.0, 26.0));
+        // The outliers and at most the 1 % tail above, at most the 1 % tail below.
+        assert!((5..=16).contains(&r.above) && r.below <= 11, "{r:?}");
+        // Not symmetric: the 1st and 99th percentiles themselves, exactly (nearest rank).
+        let s = ColorScale::robust(&v, 1.0, false, 1e-9);
+        let mut sorted = v.clone();
+        sorted.sort_by(f64::total_cmp);
+        let rank = |p: f64| sorted[((p / 100.0) * (sorted.len() - 1) as f64).round() as usize];
+        assert_eq!(
+            s,
+            ColorScale::Linear {
+                lo: rank(1.0),
+                hi: rank(99.0)
+            }
+        );
+        // Min/max: tail 0.
+        assert_eq!(
+            ColorScale::robust(&v, 0.0, false, 1e-9),
+            ColorScale::Linear { lo: -1.0, hi: 26.0 }
+        );
+        // Undefined values are counted, not used; none finite gives no range.
+        let r = DataRange::of(&[f64::NAN, 1.0, f64::INFINITY], &s).unwrap();
+        assert_eq!((r.finite, r.undefined), (1, 2));
+        assert!(DataRange::of(&[f64::NAN], &s).is_none());
+        // A plane's rounding noise does not fill the map.
+        let noise = [1e-17, -2e-17, 0.0];
+        assert_eq!(
+            ColorScale::robust(&noise, 1.0, true, 1e-9),
+            ColorScale::Linear {
+                lo: -1e-9,
+                hi: 1e-9
+            }
+        );
+    }
+
+    /// The selection percentile agrees with sorting on random data.
+    #[test]
+    fn percentile_by_selection_matches_sorting() {
+        let mut x = 0.123_f64;
+        for n in [1usize, 2, 3, 10, 101, 1000] {
+            let v: Vec<f64> = (0..n)
+                .map(|_| {
+                    x = (x * 9301.0 + 0.4929).fract();
+                    x * 100.0 - 50.0
+                })
+                .collect();
+            let mut sorted = v.clone();
+            sorted.sort_by(f64::total_cmp);
+            for p in [0.0, 1.0, 37.5, 50.0, 99.0, 100.0] {
+                let want = sorted[((p / 100.0) * (n - 1) as f64).round() as usize];
+                assert_eq!(percentile(&mut v.clone(), p), Some(want), "n {n} p {p}");
+            }
+        }
+        assert_eq!(percentile(&mut [], 50.0), None);
+    }
 
     #[test]
     fn the_seed_map_runs_green_black_red() {

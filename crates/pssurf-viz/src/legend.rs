@@ -1,7 +1,8 @@
 //! The legend: a colour bar with numeric ticks and the quantity's name.
 
-use crate::colormap::{ColorMap, ColorScale};
+use crate::colormap::{ColorMap, ColorScale, DataRange};
 use crate::text::{Align, TextStyle, draw_text, text_width};
+use pssurf::text::Significant;
 
 /// A rectangle in pixels.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -80,24 +81,64 @@ pub fn draw_legend(
     map: &ColorMap,
     scale: &ColorScale,
 ) {
+    draw_legend_data(image, width, area, title, map, scale, None);
+}
+
+/// [`draw_legend`], with the data's true maximum above the bar and minimum below it, each
+/// marked with an arrow (▲, ▼) when the scale clips values on that side.
+pub fn draw_legend_data(
+    image: &mut [[u8; 3]],
+    width: usize,
+    area: Rect,
+    title: &str,
+    map: &ColorMap,
+    scale: &ColorScale,
+    data: Option<&DataRange>,
+) {
     let font = (area.w / 9.0).clamp(11.0, 18.0);
     let style = TextStyle {
         size: font,
         color: INK,
         align: Align::Left,
     };
-    let y = draw_title(image, width, area, title, &style);
+    let mut y = draw_title(image, width, area, title, &style);
+    let mut bottom = area.y + area.h;
+    if let Some(d) = data {
+        let (top, low) = extreme_labels(d);
+        y += 0.3 * font;
+        draw_text(image, width, area.x + 2.0, y, &top, &style);
+        y += 0.3 * font;
+        draw_text(
+            image,
+            width,
+            area.x + 2.0,
+            bottom - 0.3 * font,
+            &low,
+            &style,
+        );
+        bottom -= 1.4 * font;
+    }
     let bar = Rect {
         x: area.x + 4.0,
         y: y + 0.5 * font,
         w: (area.w * 0.18).clamp(10.0, 24.0),
-        h: (area.y + area.h - y - 1.5 * font).max(10.0),
+        h: (bottom - y - 1.5 * font).max(10.0),
     };
     let height = image.len() / width.max(1);
     let pixels = BarPixels::of(&bar);
     fill_bar(image, width, height, pixels, map);
     draw_frame(image, width, height, pixels);
     draw_ticks(image, width, height, &bar, scale, &style);
+}
+
+/// The labels of the data's maximum and minimum: `▲ max 26.3` when values above the scale
+/// are clipped, else `max 0.98`; likewise `▼ min …`.
+pub fn extreme_labels(d: &DataRange) -> (String, String) {
+    let mark = |clipped: usize, arrow: &'static str| if clipped > 0 { arrow } else { " " };
+    (
+        format!("{} max {}", mark(d.above, "▲"), Significant(d.max, 4)),
+        format!("{} min {}", mark(d.below, "▼"), Significant(d.min, 4)),
+    )
 }
 
 /// The words of `title` in lines at most `max_width` wide at font size `font`.

@@ -10,7 +10,19 @@ pub struct Short(pub f64);
 
 impl fmt::Display for Short {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let x = self.0;
+        fmt::Display::fmt(&Significant(self.0, 4), f)
+    }
+}
+
+/// A number for people with this many significant digits (1 … 17; at least all the digits
+/// before the point), trailing zeros dropped, in scientific notation outside 1e-3 … 1e6
+/// only: `Significant(0.000123456, 5)` is `1.2346e-4`, `Significant(2.5, 6)` is `2.5`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Significant(pub f64, pub usize);
+
+impl fmt::Display for Significant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (x, digits) = (self.0, self.1.clamp(1, 17));
         if x == 0.0 || !x.is_finite() {
             // `0` for ±0; NaN and ±inf as Rust writes them.
             return if x == 0.0 {
@@ -21,8 +33,7 @@ impl fmt::Display for Short {
         }
         let a = x.abs();
         if (1e-3..1e6).contains(&a) {
-            // Four significant digits, trailing zeros dropped.
-            let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+            let decimals = (digits as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
             let s = format!("{x:.decimals$}");
             let s = if s.contains('.') {
                 s.trim_end_matches('0').trim_end_matches('.')
@@ -31,9 +42,13 @@ impl fmt::Display for Short {
             };
             f.write_str(s)
         } else {
-            let s = format!("{x:.3e}");
+            let s = format!("{x:.prec$e}", prec = digits - 1);
             let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
-            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            let mantissa = if mantissa.contains('.') {
+                mantissa.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                mantissa
+            };
             write!(f, "{mantissa}e{exponent}")
         }
     }
@@ -103,6 +118,36 @@ mod tests {
         for k in -320..=308 {
             let x = 1.234_567_89 * 10f64.powi(k);
             assert!(Short(x).to_string().len() <= 11, "{x:e}");
+        }
+    }
+
+    #[test]
+    fn significant_digits_for_people() {
+        let cases = [
+            (0.000_123_456, 5, "1.2346e-4"),
+            (2.5, 6, "2.5"),
+            (1.0 / 3.0, 6, "0.333333"),
+            (-1234.5678, 6, "-1234.57"),
+            (0.001, 6, "0.001"),
+            (999_999.0, 6, "999999"),
+            (1e6, 6, "1e6"),
+            (1e300, 6, "1e300"),
+            (-2.0e-7, 5, "-2e-7"),
+            (1.5, 1, "2"),
+        ];
+        for (x, digits, want) in cases {
+            assert_eq!(Significant(x, digits).to_string(), want, "{x:e}");
+        }
+        // Never e-notation in 1e-3 … 1e6, never more than `digits` significant digits.
+        for k in 0..2000 {
+            let x = 10f64.powf(-3.0 + 9.0 * k as f64 / 2000.0) * 0.999_999_9;
+            let s = Significant(x, 5).to_string();
+            if (1e-3..1e6).contains(&x) {
+                assert!(!s.contains('e'), "{x:e} → {s}");
+            }
+            let digits = s.trim_start_matches(['0', '.']).replace('.', "");
+            let digits = digits.split('e').next().unwrap().trim_end_matches('0');
+            assert!(digits.len() <= 6, "{x:e} → {s}");
         }
     }
 

@@ -36,12 +36,12 @@ impl Panel for NoisePanel {
             return;
         };
         egui::Grid::new("noise").num_columns(2).show(ui, |ui| {
-            ui.label("amplitude");
-            ui.add(
-                egui::DragValue::new(&mut self.amplitude)
-                    .speed(0.001)
-                    .range(0.0..=10.0),
-            );
+            let rule = crate::fields::Rule::Within(0.0, 10.0);
+            let amplitude = &mut self.amplitude;
+            let outcome = crate::fields::labelled(ui, "amplitude", amplitude, rule, 0.001);
+            if let Some(m) = outcome.refusal() {
+                cx.status(m);
+            }
             ui.end_row();
             ui.label("distribution");
             ui.horizontal(|ui| {

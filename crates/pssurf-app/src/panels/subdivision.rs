@@ -36,15 +36,22 @@ impl Panel for SubdivisionPanel {
             ui.add(egui::DragValue::new(&mut self.times).range(1..=4));
         });
         let after = n as f64 * 4f64.powi(self.times as i32);
-        let button = ui
-            .button("Subdivide")
-            .on_hover_text("Refine the triangulation; the surface stays the same");
-        if after > 4e6 {
+        // The limit is said here, beside the steps it is about, and the button waits.
+        let too_many = after > 4e6;
+        if too_many {
             ui.colored_label(
                 egui::Color32::DARK_RED,
-                "That would make more than 4 million vertices.",
+                format!(
+                    "{} subdivision(s) would make about {} vertices, more than 4 million.",
+                    self.times,
+                    crate::fields::compact(after)
+                ),
             );
-        } else if button.clicked() {
+        }
+        let button = ui
+            .add_enabled(!too_many, egui::Button::new("Subdivide"))
+            .on_hover_text("Refine the triangulation; the surface stays the same");
+        if button.clicked() {
             let s = u.subdivide_times(self.times);
             let vertices = s.grid().vertex_count();
             let status = format!("subdivided {} time(s): {vertices} vertices", self.times);

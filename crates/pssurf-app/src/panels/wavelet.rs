@@ -64,11 +64,12 @@ impl Panel for WaveletPanel {
             ui.add(egui::DragValue::new(&mut settings.levels).range(1..=available));
             ui.end_row();
             ui.label("threshold (% of max)");
-            ui.add(
-                egui::DragValue::new(&mut settings.percent)
-                    .speed(0.5)
-                    .range(0.0..=100.0),
-            );
+            let rule = crate::fields::Rule::Within(0.0, 100.0);
+            let percent = &mut settings.percent;
+            if let Some(m) = crate::fields::number(ui, "threshold %", percent, rule, 0.5).refusal()
+            {
+                cx.status(m);
+            }
             ui.end_row();
             ui.label("mode");
             ui.horizontal(|ui| {

@@ -42,6 +42,27 @@ pub fn remove_pending_temp_files() -> usize {
     removed
 }
 
+/// The cause of a failed read or write in a few words for a message, without the OS error
+/// number: `no space left on the device`, `the folder does not exist`.
+pub fn io_cause(e: &std::io::Error) -> String {
+    match e.raw_os_error() {
+        Some(28) => "no space left on the device".into(),
+        Some(13) => "permission denied".into(),
+        Some(30) => "the file system is read-only".into(),
+        Some(122) => "the disk quota is exceeded".into(),
+        Some(2) => "no such file or folder".into(),
+        Some(20) => "a part of the path is not a folder".into(),
+        Some(21) => "it is a folder".into(),
+        _ => {
+            let text = e.to_string();
+            match text.find(" (os error") {
+                Some(k) => text[..k].to_string(),
+                None => text,
+            }
+        }
+    }
+}
+
 /// How much a write must survive.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Durability {
