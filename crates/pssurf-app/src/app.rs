@@ -974,7 +974,7 @@ impl Default for Layout {
 }
 
 /// The default width of the left panel, in points.
-pub const LEFT_WIDTH: f32 = 290.0;
+pub const LEFT_WIDTH: f32 = 310.0;
 /// The default width of the right panel, in points.
 pub const RIGHT_WIDTH: f32 = 320.0;
 

@@ -12,7 +12,7 @@ pub const DIGITS: usize = 6;
 
 /// The width of a number field, in points (fits `-0.123457`; longer numbers scroll inside
 /// the field rather than widen the panel).
-pub const FIELD_WIDTH: f32 = 68.0;
+pub const FIELD_WIDTH: f32 = 62.0;
 
 /// A number for people: [`DIGITS`] significant digits, e-notation only outside 1e-3 … 1e6.
 pub fn compact(x: f64) -> String {

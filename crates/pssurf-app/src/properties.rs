@@ -142,27 +142,30 @@ fn object_fields(ui: &mut egui::Ui, o: &SceneObject, refused: &mut Vec<String>) 
 /// The move / turn / scale fields of a placement; a refused value's message goes to
 /// `refused`.
 fn transform_grid(ui: &mut egui::Ui, t: &mut Transform, refused: &mut Vec<String>) {
-    egui::Grid::new("transform").num_columns(4).show(ui, |ui| {
-        for (row, values, rule, speed) in [
-            ("move", &mut t.translate, Rule::Coordinate, 0.01),
-            (
-                "turn",
-                &mut t.rotate_deg,
-                Rule::Within(-36_000.0, 36_000.0),
-                0.5,
-            ),
-        ] {
-            ui.label(row);
-            for (x, axis) in values.iter_mut().zip(["x", "y", "z"]) {
-                let name = format!("{row} {axis}");
-                refused.extend(fields::number(ui, &name, x, rule, speed).refusal());
+    egui::Grid::new("transform")
+        .num_columns(4)
+        .spacing([4.0, 4.0])
+        .show(ui, |ui| {
+            for (row, values, rule, speed) in [
+                ("move", &mut t.translate, Rule::Coordinate, 0.01),
+                (
+                    "turn",
+                    &mut t.rotate_deg,
+                    Rule::Within(-36_000.0, 36_000.0),
+                    0.5,
+                ),
+            ] {
+                ui.label(row);
+                for (x, axis) in values.iter_mut().zip(["x", "y", "z"]) {
+                    let name = format!("{row} {axis}");
+                    refused.extend(fields::number(ui, &name, x, rule, speed).refusal());
+                }
+                ui.end_row();
             }
+            let rule = Rule::Within(1e-6, 1e6);
+            refused.extend(fields::labelled(ui, "scale", &mut t.scale, rule, 0.01).refusal());
             ui.end_row();
-        }
-        let rule = Rule::Within(1e-6, 1e6);
-        refused.extend(fields::labelled(ui, "scale", &mut t.scale, rule, 0.01).refusal());
-        ui.end_row();
-    });
+        });
 }
 
 /// The grid of control points (x, y, z and the weight of a rational surface); returns
@@ -171,6 +174,7 @@ fn control_grid(ui: &mut egui::Ui, c: &mut VertexControl, refused: &mut Vec<Stri
     let mut changed = false;
     egui::Grid::new("control")
         .num_columns(5)
+        .spacing([4.0, 4.0])
         .striped(true)
         .show(ui, |ui| {
             ui.strong("");

@@ -172,3 +172,79 @@ fn the_wireframe_shows_dark_edges_on_the_background_and_nothing_else() {
     assert!(edges > 5000, "{edges} edge pixels");
     assert!(other < edges / 50, "{other} coloured pixels");
 }
+
+/// Issue 14: at 1280×800 and 1920×1080, with the control-point editor and the probe panel
+/// open, no widget of a side panel reaches past its panel's sides (the panels scroll
+/// instead), the 3D view, the legend and the panels lie side by side, and numbers changing
+/// width do not move the panels. The pictures are kept as snapshots.
+#[test]
+fn at_1280x800_and_1920x1080_no_panel_overflows() {
+    use egui_kittest::kittest::{NodeT, Queryable};
+    let mut results = egui_kittest::SnapshotResults::new();
+    for (w, h) in [(1280.0, 800.0), (1920.0, 1080.0)] {
+        let mut app = App::demo();
+        app.doc.selection.vertex = Some(9);
+        let mut harness = headless::harness(app, w, h);
+        harness.run_steps(4);
+        harness.get_by_label("Probe").click();
+        harness.run_steps(4);
+        let layout = harness.state().layout;
+        assert!(
+            layout.left.right() <= layout.view.left() + 0.5,
+            "{layout:?}"
+        );
+        assert!(
+            layout.view.right() <= layout.legend.left() + 0.5,
+            "{layout:?}"
+        );
+        assert!(
+            layout.legend.right() <= layout.right.left() + 0.5,
+            "{layout:?}"
+        );
+        assert!(
+            layout.view.width() > 0.35 * w,
+            "the 3D view keeps room: {layout:?}"
+        );
+        let mut checked = 0;
+        for node in harness.root().children_recursive() {
+            let Some(r) = node.accesskit_node().bounding_box() else {
+                continue;
+            };
+            let (x0, x1) = (r.x0 as f32, r.x1 as f32);
+            for panel in [layout.left, layout.right] {
+                let c = 0.5 * (r.y0 + r.y1) as f32;
+                let inside =
+                    panel.x_range().contains(0.5 * (x0 + x1)) && panel.y_range().contains(c);
+                // The panels' own resize handles straddle their edges by design.
+                let handle = node.accesskit_node().label().as_deref() == Some("Resize panel");
+                if inside && !handle {
+                    checked += 1;
+                    assert!(
+                        x0 >= panel.left() - 0.5 && x1 <= panel.right() + 0.5,
+                        "{w}×{h}: {:?} spans {x0}…{x1}, its panel {}…{}",
+                        node.accesskit_node().label(),
+                        panel.left(),
+                        panel.right()
+                    );
+                }
+            }
+        }
+        assert!(checked > 40, "only {checked} widgets checked");
+        let name = format!("layout_{}x{}", w as u32, h as u32);
+        let options = SnapshotOptions::new()
+            .threshold(2.0)
+            .max_failed_pixels((w * h / 200.0) as usize);
+        harness.snapshot_options(&name, &options);
+        // A number that needs many characters does not widen a panel.
+        harness
+            .get_by_label("move x")
+            .set_value_accesskit(-1.234_567_89e-17);
+        harness
+            .get_by_label("Q1 z")
+            .set_value_accesskit(123_456.789_012);
+        harness.run_steps(4);
+        let after = harness.state().layout;
+        assert_eq!((after.left, after.right), (layout.left, layout.right));
+        results.extend(harness.take_snapshot_results());
+    }
+}
