@@ -166,9 +166,10 @@ pub fn export_surface(doc: &Document, path: &Path) -> Result<(), String> {
         .object
         .and_then(|i| doc.scene.objects.get(i))
         .ok_or("select an object to export")?;
-    let text = pssurf::io::to_json_string(&o.surface);
-    atomic_write_bytes(path, Durability::Durable, text.as_bytes())
-        .map_err(|e| write_error(path, &e))
+    pssurf::io::save(&o.surface, path).map_err(|e| match e {
+        pssurf::io::FileError::Io { cause, .. } => write_error(path, &cause),
+        other => other.to_string(),
+    })
 }
 
 /// "cannot write PATH: the cause in a few words".

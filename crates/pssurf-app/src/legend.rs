@@ -4,7 +4,9 @@
 //! was chosen.
 
 use egui::{Align2, Color32, FontId, Rect, Stroke, pos2, vec2};
-use pssurf_viz::colormap::ColorMap;
+use pssurf::text::Significant;
+use pssurf_viz::colormap::{ColorMap, ColorScale};
+use pssurf_viz::legend::extreme_labels;
 use pssurf_viz::plot::Range;
 
 use crate::display::{DisplaySettings, Legend};
@@ -16,14 +18,12 @@ pub const WIDTH: f32 = 150.0;
 /// The colour of the arrows and extremes of clipped values.
 const CLIPPED: Color32 = Color32::from_rgb(170, 40, 20);
 
-/// How the range was chosen, in a few words (`robust: 1–99 %, symmetric`).
+/// How the range was chosen, in a few words (`auto: 1–99 %, symmetric`).
 pub fn range_note(settings: &DisplaySettings, legend: &Legend) -> String {
+    let (lo, hi) = legend.scale.ends();
     match settings.range {
-        _ if matches!(
-            legend.scale,
-            pssurf_viz::colormap::ColorScale::Contrast { .. }
-        ) && settings.range == Range::Auto =>
-        {
+        // The seed's map has the contrast curve as its automatic scale.
+        Range::Auto if matches!(legend.scale, ColorScale::Contrast { .. }) => {
             "auto: the seed's contrast curve".into()
         }
         Range::Auto => {
@@ -33,7 +33,7 @@ pub fn range_note(settings: &DisplaySettings, legend: &Legend) -> String {
             } else {
                 format!("auto: {}–{} %", compact(t), compact(100.0 - t))
             };
-            if settings.symmetric && legend.scale.ends().0 == -legend.scale.ends().1 {
+            if settings.symmetric && lo == -hi {
                 note.push_str(", symmetric");
             }
             note
@@ -43,78 +43,71 @@ pub fn range_note(settings: &DisplaySettings, legend: &Legend) -> String {
     }
 }
 
-/// Draws `legend` in `rect` (the strip beside the view).
+/// Draws `legend` in `rect` (the strip beside the view): title, the data's maximum, the
+/// bar with ticks, the minimum, then `note` and the share of clipped values.
 pub fn paint(ui: &egui::Ui, rect: Rect, legend: &Legend, map: &ColorMap, note: &str) {
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 0.0, ui.visuals().panel_fill);
     let ink = ui.visuals().strong_text_color();
     let weak = ui.visuals().weak_text_color();
-    let left = rect.left() + 8.0;
-    let mut y = rect.top() + 8.0;
-    let wrap = |text: String, size: f32, color: Color32| {
-        painter.layout(text, FontId::proportional(size), color, rect.width() - 16.0)
+    let text = TextBlock {
+        painter: &painter,
+        left: rect.left() + 8.0,
+        width: rect.width() - 16.0,
     };
-    let mut lines = vec![(legend.title(), 13.0, ink)];
+    let (body, small) = (FontId::proportional(13.0), FontId::proportional(11.0));
+    // The extremes in the monospace face, which has the arrows ▲ ▼.
+    let mono = FontId::monospace(11.0);
+    let mut title = vec![(legend.title(), body, ink)];
     if let Some((_, name)) = &legend.object {
-        lines.push((format!("of {name}"), 12.0, weak));
+        title.push((format!("of {name}"), small.clone(), weak));
     }
-    for (text, size, color) in lines {
-        let galley = wrap(text, size, color);
-        let h = galley.size().y;
-        painter.galley(pos2(left, y), galley, color);
-        y += h + 2.0;
-    }
+    let mut y = text.lines(rect.top() + 8.0, title);
     let data = legend.data;
-    let small = FontId::monospace(11.0);
-    let extreme = |y: f32, arrow: &str, word: &str, value: Option<f64>, clipped: bool| {
-        let text = match value {
-            Some(v) => format!(
-                "{} {word} {}",
-                if clipped { arrow } else { " " },
-                compact(v)
-            ),
-            None => format!("  {word} —"),
-        };
-        let color = if clipped { CLIPPED } else { ink };
-        painter.text(pos2(left, y), Align2::LEFT_TOP, text, small.clone(), color);
-    };
-    y += 4.0;
-    extreme(
-        y,
-        "▲",
-        "max",
-        data.map(|d| d.max),
-        data.is_some_and(|d| d.above > 0),
+    let (max, min) = data.as_ref().map_or_else(
+        || ("  max —".to_string(), "  min —".to_string()),
+        extreme_labels,
     );
-    y += 18.0;
-    let notes_height = 56.0;
+    let clipped = |n: usize| if n > 0 { CLIPPED } else { ink };
+    let above = clipped(data.map_or(0, |d| d.above));
+    y = text.lines(y + 4.0, [(max, mono.clone(), above)]);
+    let notes_height = 60.0;
     let bar = Rect::from_min_size(
-        pos2(left + 4.0, y),
-        vec2(18.0, (rect.bottom() - y - notes_height - 22.0).max(40.0)),
+        pos2(text.left + 4.0, y + 4.0),
+        vec2(18.0, (rect.bottom() - y - notes_height - 26.0).max(40.0)),
     );
     paint_bar(&painter, bar, map);
     paint_ticks(&painter, bar, legend, ink);
-    let mut y = bar.bottom() + 6.0;
-    extreme(
-        y,
-        "▼",
-        "min",
-        data.map(|d| d.min),
-        data.is_some_and(|d| d.below > 0),
-    );
-    y += 20.0;
-    let mut notes = vec![note.to_string()];
+    let below = clipped(data.map_or(0, |d| d.below));
+    y = text.lines(bar.bottom() + 6.0, [(min, mono, below)]);
+    let mut notes = vec![(note.to_string(), small.clone(), weak)];
     if let Some(d) = data {
-        notes.push(format!("clipped: {} %", compact(d.clipped_percent())));
+        let share = format!("clipped: {} %", Significant(d.clipped_percent(), 3));
+        notes.push((share, small.clone(), weak));
         if d.undefined > 0 {
-            notes.push(format!("{} undefined", d.undefined));
+            notes.push((format!("{} undefined", d.undefined), small, weak));
         }
     }
-    for n in notes {
-        let galley = wrap(n, 11.0, weak);
-        let h = galley.size().y;
-        painter.galley(pos2(left, y), galley, weak);
-        y += h;
+    text.lines(y + 6.0, notes);
+}
+
+/// Lines of text wrapped to a column of the legend.
+struct TextBlock<'a> {
+    painter: &'a egui::Painter,
+    left: f32,
+    width: f32,
+}
+
+impl TextBlock<'_> {
+    /// Draws `(text, font, colour)` lines from `y` down; returns the `y` below them.
+    fn lines(&self, mut y: f32, lines: impl IntoIterator<Item = (String, FontId, Color32)>) -> f32 {
+        for (text, font, color) in lines {
+            let galley = (self.painter).layout(text, font, color, self.width);
+            let height = galley.size().y;
+            self.painter.galley(pos2(self.left, y), galley, color);
+            y += height + 2.0;
+        }
+        y
     }
 }
 

@@ -4,7 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use egui::accesskit::Role;
-use egui::{Key, Modifiers, vec2};
+mod support;
+
+use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::{By, NodeT, Queryable};
 use pssurf::surface::Surface;
@@ -15,22 +17,7 @@ use pssurf_app::display::{ViewMode, scale_for};
 use pssurf_app::edit::vertex_control;
 use pssurf_app::scene::{FileKind, Scene, SceneObject};
 use pssurf_viz::colormap::ColorScale;
-
-fn harness(app: App) -> Harness<'static, App> {
-    let mut h = Harness::builder()
-        .with_size(vec2(1400.0, 900.0))
-        .build_ui_state(|ui, app: &mut App| app.ui(ui), app);
-    h.run_steps(2);
-    h
-}
-
-/// Scrolls the widget labelled `label` into view, then clicks it.
-fn press(h: &mut Harness<'_, App>, label: &str) {
-    h.get_by_label(label).scroll_to_me();
-    h.run_steps(10);
-    h.get_by_label(label).click();
-    h.run_steps(3);
-}
+use support::{harness, press};
 
 /// A surface file holding the demo's paraboloid, and an application showing it.
 fn surface_document(dir: &Path) -> (PathBuf, App) {
@@ -536,4 +523,48 @@ fn rational_app() -> App {
         vertex: Some(3),
     };
     app
+}
+
+#[test]
+fn an_exported_surface_file_loads_again_and_bad_targets_say_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = harness(App::demo());
+    h.state_mut().doc.selection.object = Some(1);
+    let out = dir.path().join("bowl.json");
+    h.state_mut()
+        .apply(Command::ExportSurface { path: out.clone() });
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    let loaded = pssurf::io::load(&out).expect("the exported surface file loads");
+    assert_eq!(
+        pssurf::io::to_json_string(&loaded),
+        pssurf::io::to_json_string(&h.state().doc.scene.objects[1].surface)
+    );
+    // A folder, a missing folder, a picture too small for its legend: one clear message
+    // each, and nothing written.
+    let missing = dir.path().join("no").join("x.json");
+    for (command, words) in [
+        (
+            Command::ExportSurface {
+                path: dir.path().to_path_buf(),
+            },
+            "is a directory",
+        ),
+        (
+            Command::ExportSurface {
+                path: missing.clone(),
+            },
+            "does not exist",
+        ),
+    ] {
+        h.state_mut().apply(command);
+        let status = h.state().status.clone();
+        assert!(
+            status.starts_with("not exported") && status.contains(words),
+            "{status}"
+        );
+        h.state_mut().error = None;
+    }
+    assert!(!missing.exists());
+    let entries = std::fs::read_dir(dir.path()).unwrap().count();
+    assert_eq!(entries, 1, "only the exported file, no temporary one");
 }

@@ -1,5 +1,7 @@
 //! State tests of the application's interactions through its UI (egui_kittest, no GPU).
 
+mod support;
+
 use egui::{Event, Key, Modifiers, PointerButton, Pos2, vec2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -9,42 +11,7 @@ use pssurf_app::App;
 use pssurf_app::display::ViewMode;
 use pssurf_app::domain_view::DomainMap;
 use pssurf_app::edit::vertex_control;
-
-fn harness(app: App) -> Harness<'static, App> {
-    let mut h = Harness::builder()
-        .with_size(vec2(1400.0, 900.0))
-        .build_ui_state(|ui, app: &mut App| app.ui(ui), app);
-    h.run_steps(2);
-    h
-}
-
-/// Scrolls the widget labelled `label` into view, then clicks it.
-fn press(h: &mut Harness<'_, App>, label: &str) {
-    h.get_by_label(label).scroll_to_me();
-    // Scrolling is animated.
-    h.run_steps(10);
-    h.get_by_label(label).click();
-    h.run_steps(2);
-}
-
-fn click(h: &mut Harness<'_, App>, pos: Pos2) {
-    h.event(Event::PointerMoved(pos));
-    h.run_steps(1);
-    h.event(Event::PointerButton {
-        pos,
-        button: PointerButton::Primary,
-        pressed: true,
-        modifiers: Modifiers::NONE,
-    });
-    h.run_steps(1);
-    h.event(Event::PointerButton {
-        pos,
-        button: PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
-    h.run_steps(2);
-}
+use support::{click, click_with, harness, press};
 
 /// The screen position of vertex `v` of the selected object in the domain view.
 fn vertex_on_screen(h: &Harness<'_, App>, v: usize) -> Pos2 {
@@ -323,24 +290,6 @@ fn opening_a_bad_file_shows_a_message_and_keeps_the_scene() {
     }
 }
 
-/// A click with Shift held.
-fn shift_click(h: &mut Harness<'_, App>, pos: Pos2) {
-    h.event(Event::PointerMoved(pos));
-    h.event(Event::ModifiersChanged(Modifiers::SHIFT));
-    h.run_steps(1);
-    for pressed in [true, false] {
-        h.event(Event::PointerButton {
-            pos,
-            button: PointerButton::Primary,
-            pressed,
-            modifiers: Modifiers::SHIFT,
-        });
-        h.run_steps(1);
-    }
-    h.event(Event::ModifiersChanged(Modifiers::NONE));
-    h.run_steps(1);
-}
-
 #[test]
 fn shift_clicking_the_domain_view_probes_the_paraboloid_with_its_exact_curvature() {
     let mut app = App::demo();
@@ -348,7 +297,7 @@ fn shift_clicking_the_domain_view_probes_the_paraboloid_with_its_exact_curvature
     let mut h = harness(app);
     let rect = h.get_by_label("domain view").rect();
     let pos = rect.center() + vec2(23.0, -11.0);
-    shift_click(&mut h, pos);
+    click_with(&mut h, pos, Modifiers::SHIFT);
     let app = h.state();
     let p = app.probe().cloned().expect("a probe");
     assert_eq!(p.object, 1);
