@@ -193,6 +193,14 @@ pub enum ExprError {
     /// The formula uses a variable other than x and y.
     #[error("the formula may use only the variables x and y, not `{0}`")]
     UnknownVariable(String),
+    /// A formula over named variables uses a name that is not one of them.
+    #[error("the formula may use only the variables {allowed}, not `{name}`")]
+    UnknownName {
+        /// The unknown name.
+        name: String,
+        /// The names allowed, comma separated.
+        allowed: String,
+    },
     /// The value or gradient is not finite at a point.
     #[error("the formula has no finite value or gradient at ({x}, {y})")]
     NotFinite {
@@ -265,6 +273,69 @@ impl HeightFunction {
         } else {
             Err(ExprError::NotFinite { x, y })
         }
+    }
+}
+
+/// A formula over named variables, evaluated for its value only (a field on a surface, say
+/// `K * z` or `abs(k1) - abs(k2)`). Same syntax as [`HeightFunction`].
+#[derive(Clone, Debug)]
+pub struct Formula {
+    expr: FlatEx<Dual, DualOps>,
+    /// For each of the expression's variables (alphabetical), its index in the caller's names.
+    vars: Vec<usize>,
+    text: String,
+}
+
+impl Formula {
+    /// Parses `formula`, which may use the variables `names` (in that order for [`Formula::eval`]).
+    ///
+    /// ```
+    /// use pssurf::expr::Formula;
+    /// let f = Formula::parse("K * z + 1", &["z", "K"]).unwrap();
+    /// assert_eq!(f.eval(&[2.0, 3.0]), 7.0);
+    /// assert!(Formula::parse("K * w", &["z", "K"]).is_err());
+    /// ```
+    pub fn parse(formula: &str, names: &[&str]) -> Result<Self, ExprError> {
+        check_shape(formula)?;
+        check_minus_before_power(formula)?;
+        let expr = FlatEx::<Dual, DualOps>::parse(formula).map_err(|e| ExprError::Parse {
+            formula: crate::text::cut(formula),
+            message: parse_message(formula, &e.to_string()),
+        })?;
+        let vars = expr
+            .var_names()
+            .iter()
+            .map(|v| {
+                names
+                    .iter()
+                    .position(|n| n == v)
+                    .ok_or_else(|| ExprError::UnknownName {
+                        name: crate::text::cut(v),
+                        allowed: names.join(", "),
+                    })
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Formula {
+            expr,
+            vars,
+            text: formula.trim().to_string(),
+        })
+    }
+
+    /// The value for the variables' `values` (in the order of the names given to
+    /// [`Formula::parse`]); NaN where the formula is undefined.
+    pub fn eval(&self, values: &[f64]) -> f64 {
+        let args: Vec<Dual> = self
+            .vars
+            .iter()
+            .map(|&k| Dual::constant(values[k]))
+            .collect();
+        self.expr.eval(&args).map_or(f64::NAN, |d| d.v)
+    }
+
+    /// The formula as written.
+    pub fn text(&self) -> &str {
+        &self.text
     }
 }
 

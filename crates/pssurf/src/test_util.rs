@@ -223,3 +223,26 @@ pub mod meshes {
         ]
     }
 }
+
+/// The Bézier triangle of degree `m` over `t` that interpolates `f` at the domain points λ/m
+/// (exact for polynomials of degree ≤ m): the collocation system solved by LU.
+pub fn interpolating_bezier(
+    t: Triangle2,
+    m: usize,
+    f: impl Fn(Point2<f64>) -> nalgebra::Vector3<f64>,
+) -> crate::bezier::BezierTriangle<nalgebra::Vector3<f64>> {
+    use crate::bezier::index::{bernstein, multi_indices};
+    let idx: Vec<[usize; 3]> = multi_indices(m).collect();
+    let n = idx.len();
+    let at = |l: &[usize; 3]| l.map(|x| x as f64 / m as f64);
+    let a = nalgebra::DMatrix::from_fn(n, n, |i, j| bernstein(idx[j], at(&idx[i])));
+    let rhs = nalgebra::DMatrix::from_fn(n, 3, |i, k| f(t.point(at(&idx[i])))[k]);
+    let x = a
+        .lu()
+        .solve(&rhs)
+        .expect("the collocation matrix is regular");
+    let points = (0..n)
+        .map(|i| nalgebra::Vector3::new(x[(i, 0)], x[(i, 1)], x[(i, 2)]))
+        .collect();
+    crate::bezier::BezierTriangle::new(t, m, points)
+}

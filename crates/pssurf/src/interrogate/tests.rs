@@ -234,7 +234,7 @@ fn paraboloids_as_parametric_patches() {
 /// A rational quadratic triangle on the sphere of radius `rad` about `centre`: the inverse
 /// stereographic projection (2u, 2v, 1 − u² − v²) / (1 + u² + v²) has quadratic numerator
 /// and denominator, so any parameter triangle maps to a rational quadratic patch.
-fn sphere_patch(
+pub(super) fn sphere_patch(
     t: Triangle2,
     rad: f64,
     centre: Vector3<f64>,
@@ -465,7 +465,7 @@ fn quantity_names_round_trip() {
 }
 
 /// A PS surface interpolating a non-polynomial function on a small Delaunay mesh.
-fn wavy_surface(seed: u64) -> Surface {
+pub(super) fn wavy_surface(seed: u64) -> Surface {
     let mut r = rng(seed);
     let tri = meshes::uniform_square(&mut r, 30);
     let basis = Arc::new(PsBasis::optimal(tri).unwrap());

@@ -1,0 +1,351 @@
+//! Level lines against closed forms: ellipses of constant K on graphs of quadratics, circles
+//! of constant height, the straight parabolic line of z = x³/6 + y²/2, plane sections;
+//! joining across pieces, gaps where curvature jumps, bounded work on wild surfaces.
+
+use std::sync::Arc;
+
+use nalgebra::{Point2, Vector3};
+
+use super::tests::wavy_surface;
+use super::*;
+use crate::geometry::Triangle2;
+use crate::ps::{Hermite, PsBasis, PsSpline};
+use crate::surface::Surface;
+use crate::test_util::*;
+use crate::triangulation::Triangulation;
+
+/// The graph of z = (a x² + b y²)/2 as a PS-spline on a random Delaunay mesh of [-1, 1]²
+/// (reproduced exactly, so K and H are the same quadratic's on every piece).
+fn elliptic_paraboloid(a: f64, b: f64, seed: u64) -> Surface {
+    let mut r = rng(seed);
+    let mut pts = vec![
+        Point2::new(-1.0, -1.0),
+        Point2::new(1.0, -1.0),
+        Point2::new(1.0, 1.0),
+        Point2::new(-1.0, 1.0),
+    ];
+    pts.extend(
+        (0..40).map(|_| Point2::new(uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0))),
+    );
+    let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
+    Surface::Functional(
+        PsSpline::interpolate(basis, |p| Hermite {
+            value: 0.5 * (a * p.x * p.x + b * p.y * p.y),
+            dx: a * p.x,
+            dy: b * p.y,
+        })
+        .unwrap(),
+    )
+}
+
+/// K and H of z = (a x² + b y²)/2 by the classical graph formulas.
+fn k_and_h(a: f64, b: f64, p: Point2<f64>) -> (f64, f64) {
+    let (fx, fy) = (a * p.x, b * p.y);
+    let w2 = 1.0 + fx * fx + fy * fy;
+    let k = a * b / (w2 * w2);
+    let h = ((1.0 + fy * fy) * a + (1.0 + fx * fx) * b) / (2.0 * w2 * w2.sqrt());
+    (k, h)
+}
+
+fn on_boundary_of_square(p: Point2<f64>) -> bool {
+    (p.x.abs() - 1.0).abs() < 1e-12 || (p.y.abs() - 1.0).abs() < 1e-12
+}
+
+#[test]
+fn level_lines_of_k_on_a_paraboloid_are_closed_ellipses_joined_across_pieces() {
+    let opts = ZeroSetOptions::default();
+    for (seed, (a, b)) in [(1.0, 2.0), (0.7, 0.7), (1.5, 0.4)].into_iter().enumerate() {
+        let s = elliptic_paraboloid(a, b, seed as u64);
+        let field = SurfaceField::Curvature(CurvatureQuantity::Gaussian);
+        // Levels whose ellipse a²x² + b²y² = √(ab/c) − 1 lies inside the square.
+        let c_of = |r2: f64| a * b / ((1.0 + r2) * (1.0 + r2));
+        let m = (a * a).min(b * b);
+        let levels = [c_of(0.2 * m), c_of(0.5 * m), c_of(0.8 * m)];
+        let sets = level_lines(&s, &field, &levels, &opts).unwrap();
+        for set in &sets {
+            assert_eq!(set.curves.len(), 1, "one ellipse at {}", set.level);
+            assert!(
+                set.gaps.is_empty(),
+                "K is the same on every piece: {:?}",
+                set.gaps
+            );
+            let c = &set.curves[0];
+            assert!(c.closed && c.uvs.len() > 20);
+            let r2 = (a * b / set.level).sqrt() - 1.0;
+            for (uv, p) in c.uvs.iter().zip(&c.points) {
+                let on_ellipse = a * a * uv.x * uv.x + b * b * uv.y * uv.y;
+                assert!(
+                    (on_ellipse - r2).abs() < 1e-9 * (1.0 + r2),
+                    "{on_ellipse} vs {r2}"
+                );
+                // The closed form, within the corrector's tolerance plus the spline's
+                // representation error of K (neighbouring pieces differ by rounding).
+                let (k, _) = k_and_h(a, b, *uv);
+                assert!(
+                    (k - set.level).abs() <= set.tolerance + 1e-10 * set.level,
+                    "{k} {}",
+                    set.level
+                );
+                assert!(
+                    (p - Vector3::new(uv.x, uv.y, 0.5 * (a * uv.x * uv.x + b * uv.y * uv.y)))
+                        .norm()
+                        < 1e-14
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn level_lines_of_h_satisfy_the_closed_form_and_a_missing_level_gives_nothing() {
+    let (a, b) = (1.2, -0.6);
+    let s = elliptic_paraboloid(a, b, 7);
+    let field = SurfaceField::Curvature(CurvatureQuantity::Mean);
+    let levels = auto_levels(&s, &field, 6);
+    assert_eq!(levels.len(), 6);
+    let sets = level_lines(&s, &field, &levels, &ZeroSetOptions::default()).unwrap();
+    let mut points = 0;
+    for set in &sets {
+        assert!(!set.curves.is_empty(), "level {}", set.level);
+        assert!(set.gaps.is_empty());
+        for c in &set.curves {
+            // Open curves end on the domain's boundary.
+            if !c.closed {
+                assert!(
+                    on_boundary_of_square(c.uvs[0])
+                        && on_boundary_of_square(*c.uvs.last().unwrap())
+                );
+            }
+            for uv in &c.uvs {
+                let (_, h) = k_and_h(a, b, *uv);
+                assert!((h - set.level).abs() <= set.tolerance + 1e-10 * set.level.abs());
+                points += 1;
+            }
+        }
+    }
+    assert!(points > 100);
+    // K = ab/W² < 0 everywhere: a positive level does not occur.
+    let k = SurfaceField::Curvature(CurvatureQuantity::Gaussian);
+    let none = level_lines(&s, &k, &[0.5], &ZeroSetOptions::default()).unwrap();
+    assert!(none[0].curves.is_empty() && none[0].gaps.is_empty());
+}
+
+#[test]
+fn height_contours_are_circles_and_walks_stay_within_their_tolerance() {
+    let s = elliptic_paraboloid(1.0, 1.0, 11);
+    for method in [
+        TraceMethod::PredictorCorrector,
+        TraceMethod::FourPoint,
+        TraceMethod::EightPoint,
+    ] {
+        let opts = ZeroSetOptions {
+            method,
+            ..Default::default()
+        };
+        let set = &level_lines(&s, &SurfaceField::Height, &[0.125], &opts).unwrap()[0];
+        if method == TraceMethod::PredictorCorrector {
+            assert_eq!(set.curves.len(), 1);
+            assert!(set.curves[0].closed && set.gaps.is_empty());
+            // The circle of radius 1/2 has length π.
+            assert!((set.curves[0].length() - std::f64::consts::PI).abs() < 1e-2);
+        }
+        // The walks only promise points within their tolerance (they can stop where the
+        // curve runs at a shallow angle to their step directions, see `TraceMethod`).
+        assert!(!set.curves.is_empty());
+        let tol = match method {
+            TraceMethod::PredictorCorrector => set.tolerance,
+            _ => opts.walk_tolerance * set.tolerance / opts.tolerance,
+        };
+        for uv in set.curves.iter().flat_map(|c| &c.uvs) {
+            let z = 0.5 * uv.coords.norm_squared();
+            assert!((z - 0.125).abs() <= tol * (1.0 + 1e-9), "{method:?} {z}");
+        }
+    }
+}
+
+#[test]
+fn height_contours_of_a_wavy_surface_join_without_gaps() {
+    // The height is continuous across pieces, so every end meets its continuation.
+    let s = wavy_surface(21);
+    let levels: Vec<f64> = (-1..=4).map(|k| 0.2 * k as f64).collect();
+    let sets = level_lines(
+        &s,
+        &SurfaceField::Height,
+        &levels,
+        &ZeroSetOptions::default(),
+    )
+    .unwrap();
+    let domain = s.domain();
+    for set in &sets {
+        assert!(
+            set.gaps.is_empty(),
+            "level {}: {:?} stuck {}",
+            set.level,
+            set.gaps,
+            set.stuck
+        );
+        assert!(!set.curves.is_empty());
+        for c in set.curves.iter().filter(|c| !c.closed) {
+            for end in [c.uvs[0], *c.uvs.last().unwrap()] {
+                assert!(domain.distance_to_boundary(end) < 1e-9, "{end:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn curvature_level_lines_end_in_reported_gaps_where_curvature_jumps() {
+    let s = wavy_surface(22);
+    let field = SurfaceField::Curvature(CurvatureQuantity::Mean);
+    let levels = auto_levels(&s, &field, 5);
+    let sets = level_lines(&s, &field, &levels, &ZeroSetOptions::default()).unwrap();
+    let domain = s.domain();
+    let mut gaps = 0;
+    for set in &sets {
+        // Every open end is on the domain's boundary or a reported gap.
+        for c in set.curves.iter().filter(|c| !c.closed) {
+            for end in [c.uvs[0], *c.uvs.last().unwrap()] {
+                let reported = set.gaps.iter().any(|g| g.uv == end);
+                assert!(
+                    reported || domain.distance_to_boundary(end) < 1e-9,
+                    "{end:?}"
+                );
+            }
+        }
+        for g in &set.gaps {
+            // On the other side the field has another value (else the line would go on).
+            assert!(!((g.across - set.level).abs() <= set.tolerance), "{g:?}");
+        }
+        gaps += set.gaps.len();
+    }
+    assert!(
+        gaps > 0,
+        "H of a C¹ PS surface jumps across the refinement lines"
+    );
+}
+
+#[test]
+fn the_parabolic_line_of_a_cubic_is_straight_and_splits_the_area_evenly() {
+    // z = x³/6 + y²/2: K = x / W², zero on x = 0, elliptic for x > 0.
+    let t = Triangle2::new(
+        Point2::new(-1.0, -1.0),
+        Point2::new(1.0, -1.0),
+        Point2::new(0.0, 1.0),
+    );
+    let s = Surface::Bezier(interpolating_bezier(t, 3, |p| {
+        Vector3::new(p.x, p.y, p.x.powi(3) / 6.0 + 0.5 * p.y * p.y)
+    }));
+    let (set, regions) = parabolic_lines(&s, &ZeroSetOptions::default()).unwrap();
+    assert_eq!(set.curves.len(), 1);
+    let c = &set.curves[0];
+    // |K| ≤ tolerance with W² ≤ 4 on the triangle.
+    assert!(
+        c.uvs.iter().all(|p| p.x.abs() <= 4.0 * set.tolerance),
+        "{:?}",
+        c.uvs
+    );
+    let ys: Vec<f64> = c.uvs.iter().map(|p| p.y).collect();
+    let (lo, hi) = ys
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+    assert!(
+        (lo + 1.0).abs() < 1e-12 && (hi - 1.0).abs() < 1e-12,
+        "{lo} {hi}"
+    );
+    // The area element √(1 + x⁴/4 + y²) is even in x and the triangle symmetric.
+    // The areas are a quadrature estimate of a discontinuous integrand (the sign of K).
+    assert!(regions.elliptic > 0.5);
+    assert!(
+        (regions.elliptic - regions.hyperbolic).abs() < 0.05 * regions.elliptic,
+        "{regions:?}"
+    );
+}
+
+#[test]
+fn plane_sections_are_zero_sets_too() {
+    let s = elliptic_paraboloid(1.0, 1.0, 31);
+    let f = PlaneDistance {
+        surface: &s,
+        origin: Vector3::new(0.0, 0.2, 0.0),
+        normal: Vector3::y(),
+    };
+    let set = trace_zero_set(&s, &f, &ZeroSetOptions::default()).unwrap();
+    assert_eq!(set.curves.len(), 1);
+    assert!(set.gaps.is_empty());
+    let c = &set.curves[0];
+    assert!(!c.closed);
+    for p in &c.points {
+        assert!((p.y - 0.2).abs() <= set.tolerance);
+        assert!((p.z - 0.5 * (p.x * p.x + p.y * p.y)).abs() < 1e-14);
+    }
+    let xs: Vec<f64> = c.points.iter().map(|p| p.x).collect();
+    assert!(
+        xs.iter().any(|&x| (x + 1.0).abs() < 1e-12) && xs.iter().any(|&x| (x - 1.0).abs() < 1e-12)
+    );
+}
+
+#[test]
+fn wild_surfaces_never_hang_and_the_point_limit_is_reported() {
+    let mut r = rng(41);
+    let tri = meshes::uniform_square(&mut r, 200);
+    let basis = Arc::new(PsBasis::optimal(tri).unwrap());
+    let s = Surface::Functional(
+        PsSpline::interpolate(basis, |p| Hermite {
+            value: (9.0 * p.x).sin() * (7.0 * p.y).cos(),
+            dx: 9.0 * (9.0 * p.x).cos() * (7.0 * p.y).cos(),
+            dy: -7.0 * (9.0 * p.x).sin() * (7.0 * p.y).sin(),
+        })
+        .unwrap(),
+    );
+    for name in ["K", "H", "k1", "k2", "kabs"] {
+        let field = SurfaceField::parse(name).unwrap();
+        let levels = auto_levels(&s, &field, 8);
+        let opts = ZeroSetOptions {
+            max_points: 500,
+            ..Default::default()
+        };
+        let sets = level_lines(&s, &field, &levels, &opts).unwrap();
+        let total: usize = sets
+            .iter()
+            .flat_map(|s| &s.curves)
+            .map(|c| c.uvs.len())
+            .sum();
+        // Each branch may finish after the budget runs out, but only one per piece and level.
+        assert!(sets.iter().all(|s| s.truncated), "{name}");
+        assert!(total < 500 + 100_000, "{total}");
+    }
+    assert!(
+        level_lines(
+            &s,
+            &SurfaceField::Height,
+            &[f64::NAN],
+            &ZeroSetOptions::default()
+        )
+        .is_err()
+    );
+    let bad = ZeroSetOptions {
+        hunting: 0,
+        ..Default::default()
+    };
+    assert_eq!(
+        level_lines(&s, &SurfaceField::Height, &[0.0], &bad),
+        Err(ZeroSetError::BadOptions)
+    );
+}
+
+#[cfg(feature = "expr")]
+#[test]
+fn formulas_of_the_surface_quantities_are_fields() {
+    let s = elliptic_paraboloid(1.0, 1.0, 51);
+    // x² + y² = 0.25 as a formula: the same circle as z = 0.125.
+    let field = SurfaceField::parse("x^2 + y^2").unwrap();
+    let set = &level_lines(&s, &field, &[0.25], &ZeroSetOptions::default()).unwrap()[0];
+    assert_eq!(set.curves.len(), 1);
+    assert!(
+        set.curves[0]
+            .uvs
+            .iter()
+            .all(|p| (p.coords.norm() - 0.5).abs() < 1e-10)
+    );
+    assert!(SurfaceField::parse("K + w").is_err());
+}
