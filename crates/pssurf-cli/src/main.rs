@@ -92,6 +92,9 @@ enum Command {
     /// Exact curvature (K, H, κ1, κ2, |κ1|+|κ2|, principal directions, piece) at points or
     /// on a grid, to CSV or .npy.
     Curvature(commands::curvature::CurvatureArgs),
+    /// Trace level lines of a field (K, H, k1, k2, kabs, z or a formula) over the whole
+    /// surface: CSV, OBJ or an SVG of the domain with the lines.
+    Trace(commands::trace::TraceArgs),
     /// Render a surface to PNG: shaded, a curvature plot with legend, zebra stripes or
     /// isophotes, with optional overlays.
     Plot(commands::plot::PlotArgs),
@@ -132,6 +135,7 @@ fn main() -> ExitCode {
         Command::Denoise(a) => commands::denoise::run(a),
         Command::Wavelet(a) => commands::wavelet::run(a),
         Command::Curvature(a) => commands::curvature::run(a),
+        Command::Trace(a) => commands::trace::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),

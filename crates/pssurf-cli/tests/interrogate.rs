@@ -535,3 +535,60 @@ fn noise_that_overflows_is_refused_for_every_kind() {
         ok(&["info", &s(&out)]);
     }
 }
+
+#[test]
+fn trace_writes_level_lines_that_satisfy_the_level_and_read_back() {
+    let d = tmp();
+    let surf = s(&d.path().join("q.json"));
+    ok(&["fit", &quadratic_csv(d.path()), "-o", &surf]);
+    let csv = d.path().join("lines.csv");
+    let report = ok(&["trace", &surf, "--level", "z=0.05,0.2", "-o", &s(&csv)]);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let curves = pssurf::io::read_curves_csv(&text).unwrap();
+    assert!(!curves.is_empty(), "{report}");
+    let f = |x: f64, y: f64| x * x - 0.7 * x * y + 0.5 * y * y;
+    for c in &curves {
+        for (uv, p) in c.uvs.iter().zip(&c.points) {
+            // The fit reproduces the quadratic, so the level lines are its conics.
+            let z = f(uv.x, uv.y);
+            assert!((z - 0.05).abs() < 1e-9 || (z - 0.2).abs() < 1e-9, "{z}");
+            assert!((p.z - z).abs() < 1e-9);
+        }
+    }
+    for ext in ["obj", "svg"] {
+        let out = d.path().join(format!("lines.{ext}"));
+        ok(&[
+            "trace",
+            &surf,
+            "--level",
+            "K=auto:3",
+            "--level",
+            "x^2+y^2=0.3",
+            "-o",
+            &s(&out),
+        ]);
+        let text = std::fs::read_to_string(&out).unwrap();
+        assert!(text.contains(if ext == "obj" { "\nl " } else { "<path" }));
+    }
+    // A level that does not occur gives no curves, not an error.
+    let none = d.path().join("none.csv");
+    ok(&["trace", &surf, "--level", "z=100", "-o", &s(&none)]);
+    assert!(
+        pssurf::io::read_curves_csv(&std::fs::read_to_string(&none).unwrap())
+            .unwrap()
+            .is_empty()
+    );
+    for bad in ["K", "K=", "K=nan", "K=auto:0", "w*2=1", "K=1e999"] {
+        let msg = fails(&["trace", &surf, "--level", bad]);
+        assert_eq!(msg.trim().lines().count(), 1, "{bad}: {msg}");
+    }
+    let msg = fails(&[
+        "trace",
+        &surf,
+        "--level",
+        "K=0",
+        "-o",
+        &s(&d.path().join("x.png")),
+    ]);
+    assert!(msg.contains(".csv, .obj or .svg"), "{msg}");
+}

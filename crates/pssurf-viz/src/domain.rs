@@ -41,6 +41,20 @@ pub struct DomainOptions {
     pub level: u32,
     /// Picture width in pixels (the height follows the domain's aspect ratio).
     pub width: f64,
+    /// Curves in the parameter domain drawn over everything (traced level lines, lines of
+    /// curvature, geodesics).
+    pub curves: Vec<DomainCurve>,
+}
+
+/// A polyline in the parameter domain, with its colour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DomainCurve {
+    /// The parameter points.
+    pub uvs: Vec<Point2<f64>>,
+    /// Whether the last point joins the first.
+    pub closed: bool,
+    /// The stroke colour (RGB).
+    pub color: [u8; 3],
 }
 
 impl Default for DomainOptions {
@@ -56,6 +70,7 @@ impl Default for DomainOptions {
             range: Range::Auto,
             level: 2,
             width: 800.0,
+            curves: Vec::new(),
         }
     }
 }
@@ -138,7 +153,29 @@ pub fn domain_svg(surface: &Surface, opts: &DomainOptions) -> String {
         None if opts.triangulation => doc = doc.add(piece_layer(surface, &frame, stroke)),
         None => {}
     }
+    if !opts.curves.is_empty() {
+        doc = doc.add(curve_layer(&opts.curves, &frame, 1.5 * stroke));
+    }
     doc.to_string()
+}
+
+/// The curves as one group of paths.
+fn curve_layer(curves: &[DomainCurve], frame: &Frame, stroke: f64) -> Group {
+    let mut g = Group::new()
+        .set("fill", "none")
+        .set("stroke-width", stroke)
+        .set("stroke-linejoin", "round");
+    for c in curves.iter().filter(|c| c.uvs.len() >= 2) {
+        let mut data = Data::new().move_to(frame.map(c.uvs[0]));
+        for p in &c.uvs[1..] {
+            data = data.line_to(frame.map(*p));
+        }
+        if c.closed {
+            data = data.close();
+        }
+        g = g.add(Path::new().set("d", data).set("stroke", hex(c.color)));
+    }
+    g
 }
 
 /// Scales the domain (and PS-triangles, which may reach outside it, when shown) into the

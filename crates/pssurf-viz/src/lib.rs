@@ -23,6 +23,6 @@ pub mod text;
 
 pub use camera::{Camera, Projection};
 pub use colormap::{ColorMap, ColorScale};
-pub use domain::{DomainOptions, domain_svg};
+pub use domain::{DomainCurve, DomainOptions, domain_svg};
 pub use export::{FieldMesh, MeshFormat, write_mesh};
 pub use plot::{Overlays, Picture, PlotOptions, Range, Shading, Show, plot};

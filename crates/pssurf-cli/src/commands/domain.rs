@@ -83,6 +83,7 @@ pub fn run(args: &DomainArgs) -> Result<()> {
         range: args.colors.range()?,
         level: args.level,
         width: args.width,
+        curves: Vec::new(),
     };
     let svg = pssurf_viz::domain_svg(&surface, &opts);
     crate::output::write_output(&args.output, Durability::Atomic, |w| {

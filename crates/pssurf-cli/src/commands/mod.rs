@@ -13,6 +13,7 @@ pub mod noise;
 pub mod plot;
 pub mod showcase;
 pub mod subdivide;
+pub mod trace;
 pub mod uniform;
 pub mod view;
 pub mod wavelet;

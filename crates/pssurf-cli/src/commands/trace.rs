@@ -1,0 +1,227 @@
+//! `pssurf trace`: level lines of a field on a surface (K, H, κ1, κ2, |κ1| + |κ2|, the height
+//! or a formula), traced by the predictor–corrector of seed 001 and joined across pieces; to
+//! CSV (`curve,u,v,x,y,z`), OBJ line elements, or an SVG of the domain with the lines.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use pssurf::interrogate::{
+    SurfaceCurve, SurfaceField, TraceMethod, ZeroSet, ZeroSetOptions, auto_levels, level_lines,
+};
+use pssurf::io::Durability;
+use pssurf_viz::{DomainCurve, DomainOptions};
+
+/// How branches are followed (`--method`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Method {
+    /// Euler predictor and Newton corrector (seed 001, 3 b).
+    PredictorCorrector,
+    /// The seed's four-point walk (3 a).
+    FourPoint,
+    /// The seed's eight-point walk.
+    EightPoint,
+}
+
+/// Arguments of `pssurf trace`.
+#[derive(clap::Args, Debug)]
+pub struct TraceArgs {
+    /// The surface file.
+    #[arg(value_name = "SURF.json")]
+    pub surface: PathBuf,
+    /// A field and its levels: `K=0,0.5`, `H=auto:10` (ten levels over the bulk of the
+    /// values), `z=0.1,0.2`, or a formula of u, v, x, y, z, K, H, k1, k2, kabs
+    /// (`x^2+y^2=0.25`). Repeat for several fields. `K=0` gives the parabolic lines.
+    #[arg(long, value_name = "FIELD=LEVELS", required = true)]
+    pub level: Vec<String>,
+    /// Hunting lines per direction on every piece (seed points; more finds smaller loops).
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub hunting: u32,
+    /// The largest step as a fraction of a piece's size.
+    #[arg(long, default_value_t = 0.125)]
+    pub step: f64,
+    /// How branches are followed.
+    #[arg(long, value_enum, default_value_t = Method::PredictorCorrector)]
+    pub method: Method,
+    /// The most points in all lines together (bounded work on wild surfaces).
+    #[arg(long, default_value_t = 1_000_000)]
+    pub max_points: usize,
+    /// Where to write: `.csv` (curve,u,v,x,y,z), `.obj` (line elements) or `.svg` (the
+    /// domain with the lines); `-` or nothing for CSV on standard output.
+    #[arg(short, long, value_name = "LINES.csv|.obj|.svg")]
+    pub output: Option<PathBuf>,
+}
+
+/// One field with its levels.
+struct LevelRequest {
+    field: SurfaceField,
+    levels: Levels,
+}
+
+enum Levels {
+    Values(Vec<f64>),
+    Auto(usize),
+}
+
+/// Parses `FIELD=LEVELS` (split at the last `=`).
+fn parse_level(text: &str) -> Result<LevelRequest> {
+    let Some((field, levels)) = text.rsplit_once('=') else {
+        bail!("--level {text}: expected FIELD=LEVELS, e.g. K=0,0.5 or H=auto:10");
+    };
+    let field = SurfaceField::parse(field).with_context(|| format!("--level {text}"))?;
+    let levels = match levels.trim().strip_prefix("auto:") {
+        Some(n) => {
+            let n: usize = n
+                .trim()
+                .parse()
+                .ok()
+                .filter(|n| (1..=1000).contains(n))
+                .with_context(|| format!("--level {text}: auto:N needs N from 1 to 1000"))?;
+            Levels::Auto(n)
+        }
+        None => {
+            let values: Vec<f64> = levels
+                .split(',')
+                .map(|x| x.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .ok()
+                .filter(|v: &Vec<f64>| !v.is_empty() && v.len() <= 1000 && v.iter().all(|x| x.is_finite()))
+                .with_context(|| {
+                    format!("--level {text}: levels must be 1 to 1000 finite numbers separated by commas, or auto:N")
+                })?;
+            Levels::Values(values)
+        }
+    };
+    Ok(LevelRequest { field, levels })
+}
+
+/// Runs `pssurf trace`.
+pub fn run(args: &TraceArgs) -> Result<()> {
+    if !(args.step > 0.0 && args.step <= 1.0) {
+        bail!("--step must be in (0, 1]");
+    }
+    if args.max_points == 0 || args.max_points > 100_000_000 {
+        bail!("--max-points must be from 1 to 100000000");
+    }
+    let requests: Vec<LevelRequest> = args
+        .level
+        .iter()
+        .map(|t| parse_level(t))
+        .collect::<Result<_>>()?;
+    let surface = crate::budget::load_surface(&args.surface)?;
+    let opts = ZeroSetOptions {
+        hunting: args.hunting as usize,
+        step: args.step,
+        max_points: args.max_points,
+        method: match args.method {
+            Method::PredictorCorrector => TraceMethod::PredictorCorrector,
+            Method::FourPoint => TraceMethod::FourPoint,
+            Method::EightPoint => TraceMethod::EightPoint,
+        },
+        ..ZeroSetOptions::default()
+    };
+    let mut traced: Vec<(String, ZeroSet)> = Vec::new();
+    for r in &requests {
+        let levels = match &r.levels {
+            Levels::Values(v) => v.clone(),
+            Levels::Auto(n) => auto_levels(&surface, &r.field, *n),
+        };
+        for set in level_lines(&surface, &r.field, &levels, &opts)? {
+            traced.push((r.field.name(), set));
+        }
+    }
+    report(&traced);
+    let curves: Vec<SurfaceCurve> = traced
+        .iter()
+        .flat_map(|(_, s)| s.curves.iter().cloned())
+        .collect();
+    write(args, &surface, &traced, &curves)
+}
+
+/// One line per level on standard error: curves, loops, points, gaps.
+fn report(traced: &[(String, ZeroSet)]) {
+    let mut first = 0;
+    for (name, s) in traced {
+        let points: usize = s.curves.iter().map(|c| c.uvs.len()).sum();
+        let closed = s.curves.iter().filter(|c| c.closed).count();
+        let ids = if s.curves.is_empty() {
+            String::new()
+        } else {
+            format!(" (curves {}–{})", first, first + s.curves.len() - 1)
+        };
+        eprintln!(
+            "{name} = {}: {} curves{ids}, {closed} closed, {points} points, {} gaps where the field jumps across pieces{}{}",
+            pssurf::text::Significant(s.level, 6),
+            s.curves.len(),
+            s.gaps.len(),
+            if s.stuck > 0 {
+                format!(", {} branches stopped", s.stuck)
+            } else {
+                String::new()
+            },
+            if s.truncated {
+                ", cut short by --max-points"
+            } else {
+                ""
+            },
+        );
+        first += s.curves.len();
+    }
+}
+
+/// A colour per level (a qualitative palette).
+const PALETTE: [[u8; 3]; 8] = [
+    [31, 119, 180],
+    [214, 39, 40],
+    [44, 160, 44],
+    [255, 127, 14],
+    [148, 103, 189],
+    [140, 86, 75],
+    [227, 119, 194],
+    [23, 190, 207],
+];
+
+fn write(
+    args: &TraceArgs,
+    surface: &pssurf::surface::Surface,
+    traced: &[(String, ZeroSet)],
+    curves: &[SurfaceCurve],
+) -> Result<()> {
+    let path = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("obj") => crate::output::write_output(&path, Durability::Atomic, |w| {
+            Ok(pssurf::io::write_curves_obj(w, curves)?)
+        })?,
+        Some("svg") => {
+            let mut lines = Vec::new();
+            for (k, (_, s)) in traced.iter().enumerate() {
+                lines.extend(s.curves.iter().map(|c| DomainCurve {
+                    uvs: c.uvs.clone(),
+                    closed: c.closed,
+                    color: PALETTE[k % PALETTE.len()],
+                }));
+            }
+            let opts = DomainOptions {
+                refinement: false,
+                ps_triangles: false,
+                curves: lines,
+                ..DomainOptions::default()
+            };
+            let svg = pssurf_viz::domain_svg(surface, &opts);
+            crate::output::write_output(&path, Durability::Atomic, |w| {
+                Ok(w.write_all(svg.as_bytes())?)
+            })?
+        }
+        Some("csv") | None => crate::output::write_output(&path, Durability::Atomic, |w| {
+            Ok(pssurf::io::write_curves_csv(w, curves)?)
+        })?,
+        Some(other) => bail!("cannot write .{other}: use .csv, .obj or .svg"),
+    }
+    if !crate::output::is_stdout(&path) {
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
