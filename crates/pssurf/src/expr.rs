@@ -231,12 +231,7 @@ impl HeightFunction {
     /// assert!(HeightFunction::parse("x + t").is_err());
     /// ```
     pub fn parse(formula: &str) -> Result<Self, ExprError> {
-        check_shape(formula)?;
-        check_minus_before_power(formula)?;
-        let expr = FlatEx::<Dual, DualOps>::parse(formula).map_err(|e| ExprError::Parse {
-            formula: crate::text::cut(formula),
-            message: parse_message(formula, &e.to_string()),
-        })?;
+        let expr = parse_checked(formula)?;
         let vars = expr
             .var_names()
             .iter()
@@ -296,12 +291,7 @@ impl Formula {
     /// assert!(Formula::parse("K * w", &["z", "K"]).is_err());
     /// ```
     pub fn parse(formula: &str, names: &[&str]) -> Result<Self, ExprError> {
-        check_shape(formula)?;
-        check_minus_before_power(formula)?;
-        let expr = FlatEx::<Dual, DualOps>::parse(formula).map_err(|e| ExprError::Parse {
-            formula: crate::text::cut(formula),
-            message: parse_message(formula, &e.to_string()),
-        })?;
+        let expr = parse_checked(formula)?;
         let vars = expr
             .var_names()
             .iter()
@@ -337,6 +327,16 @@ impl Formula {
     pub fn text(&self) -> &str {
         &self.text
     }
+}
+
+/// Parses a formula after the checks of shape and of a minus before a power.
+fn parse_checked(formula: &str) -> Result<FlatEx<Dual, DualOps>, ExprError> {
+    check_shape(formula)?;
+    check_minus_before_power(formula)?;
+    FlatEx::<Dual, DualOps>::parse(formula).map_err(|e| ExprError::Parse {
+        formula: crate::text::cut(formula),
+        message: parse_message(formula, &e.to_string()),
+    })
 }
 
 /// Refuses a unary minus whose operand is raised to a power (`-x^2`, `2*-y^2`, `(-3^x)`).
