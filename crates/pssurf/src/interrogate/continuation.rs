@@ -340,7 +340,11 @@ pub(crate) fn edge_root(
     if f0.abs() <= tolerance {
         return f(at(s0)).map(|x| (at(s0), x));
     }
-    let mut delta = ((b - a).norm() / len2.sqrt()).max(1e-12);
+    // The curve crosses the edge within about a chord of where the chord does; a root
+    // farther along the edge belongs to another crossing.
+    let chord = (b - a).norm();
+    let mut delta = (chord / len2.sqrt()).max(1e-12);
+    let widest = 2.0 * delta;
     let bracket = loop {
         let (lo, hi) = ((s0 - delta).max(0.0), (s0 + delta).min(1.0));
         let (flo, fhi) = (value(lo)?, value(hi)?);
@@ -350,12 +354,15 @@ pub(crate) fn edge_root(
         if fhi * f0 <= 0.0 {
             break (s0, f0, hi, fhi);
         }
-        if (lo == 0.0 && hi == 1.0) || delta > 4.0 {
+        if (lo == 0.0 && hi == 1.0) || delta >= widest {
             return None;
         }
         delta *= 2.0;
     };
     let s = illinois(&mut value, bracket, tolerance)?;
+    if (at(s) - cross).norm() > 1.5 * chord + 1e-12 * len2.sqrt() {
+        return None;
+    }
     f(at(s)).map(|x| (at(s), x))
 }
 

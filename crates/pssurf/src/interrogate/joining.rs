@@ -240,18 +240,19 @@ fn collect_ends(branches: &[BranchEnds], edges: &Edges, join_tolerance: f64) -> 
     ends
 }
 
-/// Pairs ends of different pieces on the same edge or at a shared corner, nearest first.
+/// Pairs ends of different pieces on the same edge or at a shared corner that lie within
+/// reach of each other, nearest first.
 fn pair(ends: &[End]) -> Vec<Option<usize>> {
-    let mut by_edge: HashMap<Place, Vec<usize>> = HashMap::new();
+    let mut by_place: HashMap<Place, Vec<usize>> = HashMap::new();
     for (i, e) in ends.iter().enumerate() {
-        by_edge.entry(e.place).or_default().push(i);
+        by_place.entry(e.place).or_default().push(i);
         if let Place::Edge(a, b) = e.place {
-            by_edge.entry(Place::Corner(a)).or_default().push(i);
-            by_edge.entry(Place::Corner(b)).or_default().push(i);
+            by_place.entry(Place::Corner(a)).or_default().push(i);
+            by_place.entry(Place::Corner(b)).or_default().push(i);
         }
     }
     let mut candidates = Vec::new();
-    for group in by_edge.values() {
+    for group in by_place.values() {
         for (x, &i) in group.iter().enumerate() {
             for &j in &group[x + 1..] {
                 let d = (ends[i].uv - ends[j].uv).norm();
@@ -343,6 +344,36 @@ fn chain(set: &mut ZeroSet, branches: &[BranchEnds], ends: &[End], partner: &[Op
             curve.uvs.pop();
             curve.points.pop();
         }
+        drop_repeats(&mut curve);
         set.curves.push(curve);
+    }
+}
+
+/// Drops points within 1e-12 of the curve's extent of their predecessor (a join repeats the
+/// crossing point, computed once on each side of the edge).
+fn drop_repeats(curve: &mut SurfaceCurve) {
+    let Some(&first) = curve.uvs.first() else {
+        return;
+    };
+    let (lo, hi) = curve
+        .uvs
+        .iter()
+        .fold((first, first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let eps = 1e-12 * (hi - lo).norm();
+    let mut k = 0;
+    for i in 0..curve.uvs.len() {
+        if k == 0 || (curve.uvs[i] - curve.uvs[k - 1]).norm() > eps {
+            k += 1;
+        } else if i + 1 < curve.uvs.len() {
+            continue; // keep the earlier point, except at the curve's end
+        }
+        curve.uvs[k - 1] = curve.uvs[i];
+        curve.points[k - 1] = curve.points[i];
+    }
+    curve.uvs.truncate(k);
+    curve.points.truncate(k);
+    if curve.closed && k > 1 && (curve.uvs[k - 1] - curve.uvs[0]).norm() <= eps {
+        curve.uvs.pop();
+        curve.points.pop();
     }
 }

@@ -281,6 +281,7 @@ where
                 set.stuck += l.stuck;
                 branches.extend(l.branches.into_iter().map(|b| (pi, b)));
             }
+
             let level = Level {
                 pieces: &pieces,
                 function,
@@ -362,15 +363,24 @@ impl<F: PieceFunction> Level<'_, F> {
                 return;
             }
             let mut added = false;
-            let mut new_ends: Vec<(usize, Point2<f64>)> = Vec::new();
+            let mut by_piece: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+            for (i, (piece, _)) in branches.iter().enumerate() {
+                by_piece.entry(*piece).or_default().push(i);
+            }
             for (other, uv) in starts {
                 let p = &self.pieces[other];
-                // Both ends of one missed branch ask for it: trace it once.
-                let reach = self.opts.join_tolerance * p.diameter;
-                if new_ends
-                    .iter()
-                    .any(|&(o, e)| o == other && (e - uv).norm() <= reach)
-                {
+                // Skip a piece whose branches already pass there (the curve grazes the edge,
+                // or both ends of one missed branch ask for it): never trace a curve twice.
+                let near = 1e-3 * p.diameter;
+                let traced = by_piece.get(&other).is_some_and(|list| {
+                    list.iter().any(|&i| {
+                        let uvs = &branches[i].1.uvs;
+                        uvs.windows(2)
+                            .any(|w| distance_to_segment(uv, w[0], w[1]) <= near)
+                            || uvs.iter().any(|q| (q - uv).norm() <= near)
+                    })
+                });
+                if traced {
                     continue;
                 }
                 let mut seen = |_: Point2<f64>, _: Point2<f64>| false;
@@ -384,8 +394,7 @@ impl<F: PieceFunction> Level<'_, F> {
                     &mut seen,
                     stuck,
                 ) {
-                    new_ends.push((other, b.uvs[0]));
-                    new_ends.push((other, *b.uvs.last().unwrap()));
+                    by_piece.entry(other).or_default().push(branches.len());
                     branches.push((other, b));
                     added = true;
                 }
