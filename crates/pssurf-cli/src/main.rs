@@ -65,7 +65,8 @@ Typical use:
   pssurf new ups --sides 6 --size 4 --height \"sin(x)*cos(y)\" -o ups.json
   pssurf subdivide ups.json --times 3 -o fine.json
   pssurf noise fine.json --amplitude 0.01 --seed 1 -o noisy.json
-  pssurf denoise noisy.json --levels 3 --threshold 5% -o clean.json";
+  pssurf denoise noisy.json --levels 3 --threshold 5% -o clean.json
+  pssurf trace ups.json --level K=0,0.5 --level H=auto:10 -o lines.svg";
 
 #[derive(Subcommand, Debug)]
 enum Command {

@@ -9,6 +9,7 @@ use pssurf::interrogate::{
     SurfaceCurve, SurfaceField, TraceMethod, ZeroSet, ZeroSetOptions, auto_levels, level_lines,
 };
 use pssurf::io::Durability;
+use pssurf::surface::PiecewiseSurface;
 use pssurf_viz::{DomainCurve, DomainOptions};
 
 /// How branches are followed (`--method`).
@@ -108,6 +109,20 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         .map(|t| parse_level(t))
         .collect::<Result<_>>()?;
     let surface = crate::budget::load_surface(&args.surface)?;
+    let levels: usize = requests
+        .iter()
+        .map(|r| match &r.levels {
+            Levels::Values(v) => v.len(),
+            Levels::Auto(n) => *n,
+        })
+        .sum();
+    estimate(
+        surface.piece_count(),
+        args.hunting as u64,
+        levels,
+        args.max_points,
+    )
+    .check()?;
     let opts = ZeroSetOptions {
         hunting: args.hunting as usize,
         step: args.step,
@@ -137,11 +152,53 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     write(args, &surface, &traced, &curves)
 }
 
-/// One line per level on standard error: curves, loops, points, gaps.
+/// What a trace needs before it starts: the hunting meshes (points, values and lines of every
+/// piece), a slot per piece and level, and the points themselves (in memory and as CSV).
+fn estimate(
+    pieces: usize,
+    hunting: u64,
+    levels: usize,
+    max_points: usize,
+) -> crate::budget::Estimate {
+    use crate::budget::mul;
+    let per_piece = mul((hunting + 1) * (hunting + 1), 64).saturating_add(256);
+    let memory = crate::budget::base_memory()
+        .saturating_add(mul(pieces as u64, per_piece))
+        .saturating_add(mul(mul(pieces as u64, levels as u64), 64))
+        .saturating_add(mul(max_points as u64, 160));
+    crate::budget::Estimate {
+        what: format!("tracing {levels} levels on {pieces} pieces"),
+        makes: format!("up to {max_points} points"),
+        memory,
+        output: mul(max_points as u64, 110),
+    }
+}
+
+/// The most levels reported one line each; beyond, one line of totals.
+const REPORTED_LEVELS: usize = 20;
+
+/// One line per level on standard error (curves, loops, points, gaps), or totals when there
+/// are many levels.
 fn report(traced: &[(String, ZeroSet)]) {
+    let points = |s: &ZeroSet| s.curves.iter().map(|c| c.uvs.len()).sum::<usize>();
+    if traced.len() > REPORTED_LEVELS {
+        let curves: usize = traced.iter().map(|(_, s)| s.curves.len()).sum();
+        let all: usize = traced.iter().map(|(_, s)| points(s)).sum();
+        let gaps: usize = traced.iter().map(|(_, s)| s.gaps.len()).sum();
+        let cut = traced.iter().any(|(_, s)| s.truncated);
+        eprintln!(
+            "{} levels: {curves} curves, {all} points, {gaps} gaps where the field jumps across pieces{}",
+            traced.len(),
+            if cut {
+                ", cut short by --max-points"
+            } else {
+                ""
+            }
+        );
+        return;
+    }
     let mut first = 0;
     for (name, s) in traced {
-        let points: usize = s.curves.iter().map(|c| c.uvs.len()).sum();
         let closed = s.curves.iter().filter(|c| c.closed).count();
         let ids = if s.curves.is_empty() {
             String::new()
@@ -149,9 +206,10 @@ fn report(traced: &[(String, ZeroSet)]) {
             format!(" (curves {}–{})", first, first + s.curves.len() - 1)
         };
         eprintln!(
-            "{name} = {}: {} curves{ids}, {closed} closed, {points} points, {} gaps where the field jumps across pieces{}{}",
+            "{name} = {}: {} curves{ids}, {closed} closed, {} points, {} gaps where the field jumps across pieces{}{}",
             pssurf::text::Significant(s.level, 6),
             s.curves.len(),
+            points(s),
             s.gaps.len(),
             if s.stuck > 0 {
                 format!(", {} branches stopped", s.stuck)

@@ -110,6 +110,9 @@ impl Region for ConvexPolygon {
     }
 }
 
+/// The most steps in a row below a thousandth of the largest step before a branch is stopped.
+const STALL: usize = 200;
+
 /// Why a branch ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum End {
@@ -155,6 +158,17 @@ pub(crate) struct Branch {
     pub end: End,
 }
 
+impl Branch {
+    /// No points yet.
+    pub fn empty() -> Self {
+        Branch {
+            uvs: Vec::new(),
+            points: Vec::new(),
+            end: End::Limit,
+        }
+    }
+}
+
 /// The unit tangent (−f_v, f_u)/|∇f| of the zero set, `None` at a singular point.
 fn tangent(s: &Sample, singular: f64) -> Option<Vector2<f64>> {
     let n = s.grad.norm();
@@ -173,17 +187,18 @@ impl Follow {
         dir: Vector2<f64>,
         seen: &mut dyn FnMut(Point2<f64>, Point2<f64>) -> bool,
     ) -> Branch {
-        let mut out = Branch {
-            uvs: Vec::new(),
-            points: Vec::new(),
-            end: End::Limit,
-        };
+        let mut out = Branch::empty();
         let (mut uv, mut here) = start;
         let mut previous: Option<Point2<f64>> = None;
         let mut heading = dir;
+        // The tangent (−f_v, f_u)/|∇f| keeps its orientation along a regular curve, so the
+        // direction of travel is `sense` times it; only across a singular point (where ∇f
+        // may flip, as for f = xy on y = 0) is the sense taken again from the chord.
+        let mut sense = tangent(&here, self.singular).map_or(1.0, |t| sign(t.dot(&dir)));
         let mut h = self.step;
         let mut travelled = 0.0;
         let origin = start.0;
+        let mut crawling = 0usize;
         loop {
             if out.uvs.len() >= self.max_points || travelled >= self.length {
                 out.end = End::Limit;
@@ -192,7 +207,7 @@ impl Follow {
             // The predictor's direction: the tangent, or across a singular point the
             // previous chord (the seed's linear extrapolation).
             let t = match tangent(&here, self.singular) {
-                Some(t) => t,
+                Some(t) => t * sense,
                 None => match previous {
                     Some(p) => (uv - p).try_normalize(0.0).unwrap_or(heading),
                     None => {
@@ -201,7 +216,6 @@ impl Follow {
                     }
                 },
             };
-            let t = if t.dot(&heading) < 0.0 { -t } else { t };
             let scale = if self.in_space {
                 (here.su * t.x + here.sv * t.y).norm()
             } else {
@@ -216,7 +230,7 @@ impl Follow {
                 .max(self.step * self.min_fraction);
             let predicted = uv + t * (step / scale);
             let next = correct(f, predicted, self.tolerance)
-                .filter(|(_, s)| turn_ok(t, s, self.singular, self.max_turn));
+                .filter(|(_, s)| turn_ok(t, s, sense, self.singular, self.max_turn));
             let Some((next_uv, next_sample)) = next else {
                 if h <= self.step * self.min_fraction {
                     out.end = End::Stuck;
@@ -249,6 +263,17 @@ impl Follow {
                 continue;
             }
             let chord = next_uv - uv;
+            // Near a critical point of f the tangent is ill-conditioned and the step can stay
+            // tiny for ever: a branch that crawls for STALL steps in a row is stopped.
+            crawling = if h <= 1e-3 * self.step {
+                crawling + 1
+            } else {
+                0
+            };
+            if crawling > STALL {
+                out.end = End::Stuck;
+                return out;
+            }
             travelled += if self.in_space {
                 (next_sample.point - here.point).norm()
             } else {
@@ -270,8 +295,14 @@ impl Follow {
             previous = Some(uv);
             heading = chord.try_normalize(0.0).unwrap_or(t);
             uv = next_uv;
+            if tangent(&here, self.singular).is_none() {
+                // Past a singular point: the sense from the chord.
+                if let Some(n) = tangent(&next_sample, self.singular) {
+                    sense = sign(n.dot(&chord));
+                }
+            }
             let turned = tangent(&next_sample, self.singular)
-                .map_or(0.0, |n| n.dot(&t).abs().min(1.0).acos());
+                .map_or(0.0, |n| (n * sense).dot(&t).clamp(-1.0, 1.0).acos());
             here = next_sample;
             if turned < 0.25 * self.max_turn {
                 h = (2.0 * h).min(self.step);
@@ -285,10 +316,16 @@ fn push(out: &mut Branch, uv: Point2<f64>, p: Vector3<f64>) {
     out.points.push(p);
 }
 
-/// Whether the tangent at the corrected point turned by at most `max_turn` from `t` (as
-/// line directions); singular points pass.
-fn turn_ok(t: Vector2<f64>, s: &Sample, singular: f64, max_turn: f64) -> bool {
-    tangent(s, singular).is_none_or(|n| n.dot(&t).abs() >= max_turn.cos())
+/// Whether the direction of travel at the corrected point (`sense` times its tangent) turned
+/// by at most `max_turn` from `t`: a step across a small loop lands where the curve runs the
+/// other way and is refused. Singular points pass.
+fn turn_ok(t: Vector2<f64>, s: &Sample, sense: f64, singular: f64, max_turn: f64) -> bool {
+    tangent(s, singular).is_none_or(|n| (n * sense).dot(&t) >= max_turn.cos())
+}
+
+/// ±1 by the sign of `x` (+1 for zero).
+fn sign(x: f64) -> f64 {
+    if x < 0.0 { -1.0 } else { 1.0 }
 }
 
 /// Newton steps along ∇f from `uv` onto |f| ≤ `tolerance`; `None` if they do not converge

@@ -195,35 +195,13 @@ impl<S: ParametricSurface + ?Sized> Tracer<'_, S> {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
-
     use super::*;
-    use crate::ps::{Hermite, PsBasis, PsSpline};
     use crate::surface::Surface;
     use crate::test_util::*;
-    use crate::triangulation::Triangulation;
 
     /// The paraboloid z = (x² + y²)/2 on [-1, 1]² (PS-splines reproduce quadratics exactly).
     fn paraboloid(seed: u64) -> Surface {
-        let mut r = rng(seed);
-        let mut pts = vec![
-            Point2::new(-1.0, -1.0),
-            Point2::new(1.0, -1.0),
-            Point2::new(1.0, 1.0),
-            Point2::new(-1.0, 1.0),
-        ];
-        pts.extend(
-            (0..60).map(|_| Point2::new(uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0))),
-        );
-        let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
-        Surface::Functional(
-            PsSpline::interpolate(basis, |p| Hermite {
-                value: 0.5 * (p.x * p.x + p.y * p.y),
-                dx: p.x,
-                dy: p.y,
-            })
-            .unwrap(),
-        )
+        crate::interrogate::level_tests::elliptic_paraboloid(1.0, 1.0, seed)
     }
 
     fn on_paraboloid(p: &Vector3<f64>) -> f64 {

@@ -32,11 +32,7 @@ pub(crate) fn walk(
     w: Walk,
     seen: &mut dyn FnMut(Point2<f64>, Point2<f64>) -> bool,
 ) -> Branch {
-    let mut out = Branch {
-        uvs: Vec::new(),
-        points: Vec::new(),
-        end: End::Limit,
-    };
+    let mut out = Branch::empty();
     let directions = neighbours(w.eight);
     let (origin, mut uv) = (start.0, start.0);
     let mut heading = dir;

@@ -255,7 +255,7 @@ where
         .collect();
     let spread = spread(&pieces);
     let budget = AtomicUsize::new(opts.max_points);
-    let mut per_piece: Vec<Vec<PieceLevel>> = pieces
+    let per_piece: Vec<Vec<PieceLevel>> = pieces
         .par_iter()
         .map(|p| {
             levels
@@ -264,43 +264,52 @@ where
                 .collect()
         })
         .collect();
-    let edges = Edges::new(pieces.iter().map(|p| &p.polygon));
-    let out = levels
-        .iter()
-        .enumerate()
-        .map(|(li, &c)| {
-            let mut set = ZeroSet {
-                level: c,
-                tolerance: tolerance(c, spread, opts),
-                ..Default::default()
-            };
-            let mut branches: Vec<(usize, PieceBranch)> = Vec::new();
-            for (pi, levels) in per_piece.iter_mut().enumerate() {
-                let l = std::mem::take(&mut levels[li]);
-                set.flat_pieces += usize::from(l.flat);
-                set.stuck += l.stuck;
-                branches.extend(l.branches.into_iter().map(|b| (pi, b)));
+    // Level by level: the pieces' branches, then continuing and joining, in parallel.
+    let mut per_level: Vec<Vec<(usize, PieceLevel)>> = levels.iter().map(|_| Vec::new()).collect();
+    for (pi, piece_levels) in per_piece.into_iter().enumerate() {
+        for (li, l) in piece_levels.into_iter().enumerate() {
+            if l.flat || l.stuck > 0 || !l.branches.is_empty() {
+                per_level[li].push((pi, l));
             }
-
-            let level = Level {
-                pieces: &pieces,
-                function,
-                c,
-                tol: set.tolerance,
-                opts,
-                budget: &budget,
-            };
-            level.continue_unfinished(&mut branches, &edges, &mut set.stuck);
-            let views = views(&branches);
-            let pairing = Pairing::new(&views, &edges, opts.join_tolerance);
-            let across = |owner: usize, uv: Point2<f64>| {
-                let p = &pieces[owner];
-                function.eval(p.index, &p.frame, uv).0
-            };
-            pairing.finish(&mut set, &views, &edges, &across);
-            set.truncated = budget.load(Ordering::Relaxed) == 0;
-            set
-        })
+        }
+    }
+    let edges = Edges::new(pieces.iter().map(|p| &p.polygon));
+    let join_level = |(c, traced): (f64, Vec<(usize, PieceLevel)>)| {
+        let mut set = ZeroSet {
+            level: c,
+            tolerance: tolerance(c, spread, opts),
+            ..Default::default()
+        };
+        let mut branches: Vec<(usize, PieceBranch)> = Vec::new();
+        for (pi, l) in traced {
+            set.flat_pieces += usize::from(l.flat);
+            set.stuck += l.stuck;
+            branches.extend(l.branches.into_iter().map(|b| (pi, b)));
+        }
+        let level = Level {
+            pieces: &pieces,
+            function,
+            c,
+            tol: set.tolerance,
+            opts,
+            budget: &budget,
+        };
+        level.continue_unfinished(&mut branches, &edges, &mut set.stuck);
+        let views = views(&branches);
+        let pairing = Pairing::new(&views, &edges, opts.join_tolerance);
+        let across = |owner: usize, uv: Point2<f64>| {
+            let p = &pieces[owner];
+            function.eval(p.index, &p.frame, uv).0
+        };
+        pairing.finish(&mut set, &views, &edges, &across);
+        set.truncated = budget.load(Ordering::Relaxed) == 0;
+        set
+    };
+    let out = levels
+        .par_iter()
+        .copied()
+        .zip(per_level)
+        .map(join_level)
         .collect();
     Ok(out)
 }
