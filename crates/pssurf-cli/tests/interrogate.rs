@@ -569,6 +569,16 @@ fn trace_writes_level_lines_that_satisfy_the_level_and_read_back() {
         ]);
         let text = std::fs::read_to_string(&out).unwrap();
         assert!(text.contains(if ext == "obj" { "\nl " } else { "<path" }));
+        if ext == "obj" {
+            // Every line element refers to a written vertex (OBJ counts from 1).
+            let vertices = text.lines().filter(|l| l.starts_with("v ")).count();
+            for l in text.lines().filter(|l| l.starts_with("l ")) {
+                for i in l[2..].split_whitespace() {
+                    let i: usize = i.parse().unwrap();
+                    assert!((1..=vertices).contains(&i), "{l}");
+                }
+            }
+        }
     }
     // A level that does not occur gives no curves, not an error.
     let none = d.path().join("none.csv");
