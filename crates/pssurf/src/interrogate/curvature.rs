@@ -227,6 +227,18 @@ impl ShapeOperator {
     }
 }
 
+/// The traceless part of the shape operator at a point, ((S11 − S22)/2, S12) in the frame
+/// e1 = s_u/|s_u|, e2 = n × e1 (smooth in (u, v) inside a piece; both vanish exactly at
+/// umbilics, where κ1 = κ2), and the mean curvature H; `None` at a singular point.
+pub(crate) fn umbilic_residual(j: &Jet<Vector3<f64>>) -> Option<(Vector2<f64>, f64)> {
+    let forms = FundamentalForms::from_jet(j).ok()?;
+    let s = ShapeOperator::new(j, &forms);
+    Some((
+        Vector2::new(0.5 * (s.s11 - s.s22), s.s12),
+        0.5 * (s.s11 + s.s22),
+    ))
+}
+
 /// The curvature values at a point, without directions (cheaper; what plots and exports
 /// need). At singular points every value is NaN.
 #[derive(Clone, Copy, Debug, PartialEq)]
