@@ -66,7 +66,11 @@ Typical use:
   pssurf subdivide ups.json --times 3 -o fine.json
   pssurf noise fine.json --amplitude 0.01 --seed 1 -o noisy.json
   pssurf denoise noisy.json --levels 3 --threshold 5% -o clean.json
-  pssurf trace ups.json --level K=0,0.5 --level H=auto:10 -o lines.svg";
+  pssurf trace ups.json --level K=0,0.5 --level H=auto:10 -o lines.svg
+  pssurf trace ups.json --curvature-lines --seeds 20 -o lines.csv
+  pssurf plot ups.json --show mean --lines lines.csv -o lines.png
+  pssurf trace ups.json --geodesic --from 4,2 --to 8,3 -o geodesic.csv
+  pssurf probe ups.json --at 5,3 --json";
 
 #[derive(Subcommand, Debug)]
 enum Command {
@@ -93,9 +97,14 @@ enum Command {
     /// Exact curvature (K, H, κ1, κ2, |κ1|+|κ2|, principal directions, piece) at points or
     /// on a grid, to CSV or .npy.
     Curvature(commands::curvature::CurvatureArgs),
-    /// Trace level lines of a field (K, H, k1, k2, kabs, z or a formula) over the whole
-    /// surface: CSV, OBJ or an SVG of the domain with the lines.
+    /// Trace curves on a surface: level lines of a field (K, H, k1, k2, kabs, z or a
+    /// formula), lines of curvature, asymptotic lines, geodesics; to CSV, OBJ or an SVG of
+    /// the domain with the lines.
     Trace(commands::trace::TraceArgs),
+    /// Everything at one point: forms, K, H, κ1, κ2, principal directions, umbilic flag,
+    /// cross-planes with their normal sections and osculating circles, Euler's formula, the
+    /// torsion and Frenet frames of the coordinate curves.
+    Probe(commands::probe::ProbeArgs),
     /// Render a surface to PNG: shaded, a curvature plot with legend, zebra stripes or
     /// isophotes, with optional overlays.
     Plot(commands::plot::PlotArgs),
@@ -137,6 +146,7 @@ fn main() -> ExitCode {
         Command::Wavelet(a) => commands::wavelet::run(a),
         Command::Curvature(a) => commands::curvature::run(a),
         Command::Trace(a) => commands::trace::run(a),
+        Command::Probe(a) => commands::probe::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),

@@ -143,7 +143,7 @@ impl PointArgs {
 }
 
 /// Reads points from a CSV file with columns `u,v` (or `x,y` when `functional`).
-fn read_points(path: &Path, functional: bool) -> Result<Vec<Point2<f64>>> {
+pub fn read_points(path: &Path, functional: bool) -> Result<Vec<Point2<f64>>> {
     let t = Table::read(path)?;
     let cols = match (t.column("u"), t.column("v"), t.column("x"), t.column("y")) {
         (Some(u), Some(v), _, _) => (u, v),

@@ -164,6 +164,28 @@ fn open_bounded(path: &Path) -> Result<Bounded<std::io::BufReader<std::fs::File>
     })
 }
 
+/// Reads a whole text file within the memory budget (a curves CSV becomes at most 24 bytes of
+/// memory per byte of text).
+pub fn read_text(path: &Path) -> Result<String> {
+    use std::io::Read;
+    if let Ok(meta) = std::fs::metadata(path)
+        && meta.is_file()
+    {
+        crate::budget::Estimate {
+            what: format!("reading {}", path.display()),
+            makes: format!("a file of {}", crate::budget::Bytes(meta.len())),
+            memory: crate::budget::base_memory().saturating_add(meta.len().saturating_mul(24)),
+            output: 0,
+        }
+        .check()?;
+    }
+    let mut text = String::new();
+    open_bounded(path)?
+        .read_to_string(&mut text)
+        .with_context(|| format!("cannot read {} as text", path.display()))?;
+    Ok(text)
+}
+
 /// Reads triangles as rows `i,j,k` of zero-based vertex indices, with or without a header
 /// (a first line with a letter in it).
 pub fn read_triangles(path: &Path, vertex_count: usize) -> Result<Vec<[usize; 3]>> {

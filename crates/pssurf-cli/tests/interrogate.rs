@@ -602,3 +602,178 @@ fn trace_writes_level_lines_that_satisfy_the_level_and_read_back() {
     ]);
     assert!(msg.contains(".csv, .obj or .svg"), "{msg}");
 }
+
+/// z = (x² + y²)/2 on [-1, 1]² (a paraboloid of revolution, reproduced exactly by `fit`).
+fn bowl(dir: &Path) -> String {
+    let mut text = String::from("x,y,z,zx,zy\n");
+    for j in 0..9 {
+        for i in 0..9 {
+            let (x, y) = (-1.0 + 0.25 * i as f64, -1.0 + 0.25 * j as f64);
+            text.push_str(&format!("{x},{y},{},{x},{y}\n", 0.5 * (x * x + y * y)));
+        }
+    }
+    let surf = s(&dir.join("bowl.json"));
+    ok(&["fit", &s(&write(dir, "bowl.csv", &text)), "-o", &surf]);
+    surf
+}
+
+fn read_curves(path: &Path) -> Vec<pssurf::interrogate::SurfaceCurve> {
+    pssurf::io::read_curves_csv(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn trace_draws_lines_of_curvature_geodesics_and_the_probe_reports_closed_forms() {
+    let d = tmp();
+    let surf = bowl(d.path());
+    // Lines of κ2 are meridians (straight in the domain through the apex), of κ1 parallels.
+    let csv = d.path().join("meridians.csv");
+    let report = ok_report(&[
+        "trace",
+        &surf,
+        "--curvature-lines",
+        "--family",
+        "2",
+        "--seeds",
+        "8",
+        "-o",
+        &s(&csv),
+    ]);
+    assert!(
+        report.contains("umbilics: 1 at (") && report.contains("k2-line"),
+        "{report}"
+    );
+    let meridians = read_curves(&csv);
+    assert!(meridians.len() >= 4, "{report}");
+    for c in &meridians {
+        let far = c
+            .uvs
+            .iter()
+            .max_by(|a, b| a.coords.norm().total_cmp(&b.coords.norm()))
+            .unwrap();
+        let dir = far.coords.normalize();
+        for q in &c.uvs {
+            assert!(
+                (dir.x * q.y - dir.y * q.x).abs() < 1e-7,
+                "{q} is off its meridian"
+            );
+        }
+    }
+    let seeds = write(d.path(), "seeds.csv", "u,v\n0.3,0.1\n-0.5,0.2\n");
+    let parallels = d.path().join("parallels.csv");
+    ok(&[
+        "trace",
+        &surf,
+        "--curvature-lines",
+        "--family",
+        "1",
+        "--from",
+        &s(&seeds),
+        "-o",
+        &s(&parallels),
+    ]);
+    let curves = read_curves(&parallels);
+    assert_eq!(curves.len(), 2);
+    for (c, r) in curves.iter().zip([0.1f64.hypot(0.3), 0.2f64.hypot(0.5)]) {
+        assert!(c.closed, "a parallel inside the square is a closed circle");
+        for q in &c.uvs {
+            assert!((q.coords.norm() - r).abs() < 1e-7);
+        }
+    }
+    // The shortest geodesic between two points on a meridian runs over the apex; its length
+    // is twice the parabola's arc ∫₀^½ √(1 + r²) dr.
+    let g = d.path().join("g.csv");
+    let report = ok_report(&[
+        "trace",
+        &surf,
+        "--geodesic",
+        "--from",
+        "-0.5,0",
+        "--to",
+        "0.5,0",
+        "-o",
+        &s(&g),
+    ]);
+    assert!(
+        report.contains("a geodesic ending at the target"),
+        "{report}"
+    );
+    let length: f64 = report
+        .split("length ")
+        .nth(1)
+        .and_then(|t| t.split([' ', ';']).next())
+        .and_then(|t| t.parse().ok())
+        .unwrap();
+    let exact = 0.5 * 1.25f64.sqrt() + 0.5f64.asinh();
+    assert!((length - exact).abs() < 1e-8, "{length} vs {exact}");
+    assert_eq!(read_curves(&g).len(), 1);
+    let report = ok_report(&[
+        "trace",
+        &surf,
+        "--geodesic",
+        "--from",
+        "0,-0.5",
+        "--dir",
+        "0,1",
+        "--length",
+        "0.5",
+        "-o",
+        &s(&g),
+    ]);
+    assert!(report.contains("the length asked for"), "{report}");
+    // The curves show on a picture.
+    let png = d.path().join("lines.png");
+    ok(&[
+        "plot",
+        &surf,
+        "--lines",
+        &s(&csv),
+        "--lines",
+        &s(&g),
+        "--size",
+        "200x150",
+        "-o",
+        &s(&png),
+    ]);
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    // The probe: K and H of the bowl, the sections' curvatures κ1 and κ2, zero torsion.
+    let json = ok(&["probe", &surf, "--at", "0.3,0.2", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let w: f64 = 1.0 + 0.09 + 0.04;
+    let (k, h) = (1.0 / (w * w), (2.0 + 0.13) / (2.0 * w.powf(1.5)));
+    assert!(
+        (v["K"].as_f64().unwrap() - k).abs() < 1e-12
+            && (v["H"].as_f64().unwrap() - h).abs() < 1e-12
+    );
+    let planes = v["cross_planes"].as_array().unwrap();
+    assert!(
+        (planes[0]["normal_curvature"].as_f64().unwrap() - v["k1"].as_f64().unwrap()).abs() < 1e-12
+    );
+    let radius = planes[1]["osculating_circle"]["radius"].as_f64().unwrap();
+    assert!((radius - 1.0 / v["k2"].as_f64().unwrap()).abs() < 1e-12);
+    assert_eq!(v["coordinate_curves"]["u"]["torsion"].as_f64(), Some(0.0));
+    assert!(ok(&["probe", &surf, "--at", "0.3,0.2"]).contains("κ1 ="));
+    // Bad input: one line, non-zero exit.
+    for args in [
+        vec!["trace", &surf, "--geodesic", "--to", "0,0"],
+        vec!["trace", &surf, "--geodesic", "--from", "5,5", "--to", "0,0"],
+        vec![
+            "trace",
+            &surf,
+            "--geodesic",
+            "--from",
+            "0,0",
+            "--dir",
+            "0,0",
+            "--length",
+            "1",
+        ],
+        vec!["trace", &surf, "--curvature-lines", "--from", "nope.csv"],
+        vec!["trace", &surf, "--curvature-lines", "--level", "K=0"],
+        vec!["probe", &surf, "--at", "9,9"],
+        vec!["probe", &surf, "--at", "x"],
+        vec!["plot", &surf, "--lines", &surf, "-o", "x.png"],
+    ] {
+        let msg = fails(&args);
+        assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");
+    }
+}

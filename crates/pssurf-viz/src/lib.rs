@@ -25,4 +25,6 @@ pub use camera::{Camera, Projection};
 pub use colormap::{ColorMap, ColorScale};
 pub use domain::{DomainCurve, DomainOptions, domain_svg};
 pub use export::{FieldMesh, MeshFormat, write_mesh};
-pub use plot::{Overlays, Picture, PlotOptions, Range, Shading, Show, plot};
+pub use plot::{
+    Overlays, Picture, PlotOptions, Polyline, Range, Shading, Show, plot, plot_with_lines,
+};

@@ -1,5 +1,6 @@
-//! Level lines (issue 15's goal: all level lines of K for 20 levels on a 10k-patch surface in
-//! under 1 s on 2 cores): hunting, tracing and joining on Franke PS-splines of growing size.
+//! Curves on surfaces (issue 15's goals): all level lines of K for 20 levels on a 10k-patch
+//! surface in under 1 s on 2 cores (hunting, tracing and joining on Franke PS-splines of
+//! growing size); 1000 lines of curvature of 200 steps each in under 0.5 s.
 
 mod common;
 
@@ -39,5 +40,47 @@ fn levels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, levels);
+/// 1000 lines of curvature from random seeds, at most 100 steps each way (200 in all), traced
+/// in parallel on a 10k-patch Franke spline.
+fn curvature_lines(c: &mut Criterion) {
+    use pssurf::interrogate::{FieldLineOptions, LineFamily, trace_field_line};
+    use rayon::prelude::*;
+    let surface = Surface::Functional(common::franke_spline(5_000));
+    let (lo, hi) = surface.domain_bounds();
+    let seeds: Vec<Point2<f64>> = (0..1000)
+        .map(|k| {
+            // A low-discrepancy (R2) sequence over the domain's box.
+            let (a, b) = (
+                (k as f64 * 0.754_877_666).fract(),
+                (k as f64 * 0.569_840_291).fract(),
+            );
+            Point2::new(lo.x + a * (hi.x - lo.x), lo.y + b * (hi.y - lo.y))
+        })
+        .collect();
+    let opts = FieldLineOptions {
+        max_points: 100,
+        ..FieldLineOptions::default()
+    };
+    let trace = || -> usize {
+        seeds
+            .par_iter()
+            .enumerate()
+            .filter_map(|(k, p)| {
+                let family = LineFamily::CURVATURE[k % 2];
+                trace_field_line(&surface, family, *p, &opts).ok()
+            })
+            .map(|l| l.curve.uvs.len() - 1)
+            .sum()
+    };
+    eprintln!("curvature lines: {} steps in 1000 lines", trace());
+    let mut g = c.benchmark_group("curvature_lines");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(1000));
+    g.bench_function("1000 lines of up to 200 steps, 10k patches", |b| {
+        b.iter(|| black_box(trace()))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, levels, curvature_lines);
 criterion_main!(benches);

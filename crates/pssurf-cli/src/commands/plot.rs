@@ -151,6 +151,10 @@ pub struct PlotArgs {
     /// Leave out the legend.
     #[arg(long)]
     pub no_legend: bool,
+    /// Draw curves traced on the surface (a `pssurf trace` CSV: curve,u,v,x,y,z), each
+    /// curve in its own colour. Repeatable.
+    #[arg(long, value_name = "LINES.csv")]
+    pub lines: Vec<PathBuf>,
     /// Zebra / isophote band width in degrees.
     #[arg(long, value_name = "DEG", default_value_t = 5.0)]
     pub band_width: f64,
@@ -268,7 +272,26 @@ pub fn options(args: &PlotArgs, surface: &Surface) -> Result<PlotOptions> {
 pub fn run(args: &PlotArgs) -> Result<()> {
     let surface = crate::budget::load_surface(&args.surface)?;
     let opts = options(args, &surface)?;
-    let picture = pssurf_viz::plot(&surface, &opts);
+    let mut extra = Vec::new();
+    for path in &args.lines {
+        let curves = read_lines(path)?;
+        let first = extra.len();
+        extra.extend(curves.into_iter().enumerate().map(|(i, c)| {
+            let k = first + i;
+            let mut points = c.points;
+            if c.closed
+                && let Some(first) = points.first()
+            {
+                points.push(*first);
+            }
+            pssurf_viz::Polyline {
+                points,
+                color: super::trace::PALETTE[k % super::trace::PALETTE.len()],
+                thickness: 2,
+            }
+        }));
+    }
+    let picture = pssurf_viz::plot_with_lines(&surface, &opts, extra);
     write_png(&picture, &args.output)?;
     eprintln!(
         "drew {} triangles (level {}) at {}x{}; wrote {}",
@@ -279,6 +302,12 @@ pub fn run(args: &PlotArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
+}
+
+/// Reads a curves CSV (`curve,u,v,x,y,z`), within the memory budget.
+pub fn read_lines(path: &std::path::Path) -> Result<Vec<pssurf::interrogate::SurfaceCurve>> {
+    let text = crate::table::read_text(path)?;
+    pssurf::io::read_curves_csv(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }
 
 /// Writes a picture as PNG, atomically.

@@ -1,6 +1,7 @@
-//! `pssurf trace`: level lines of a field on a surface (K, H, κ1, κ2, |κ1| + |κ2|, the height
-//! or a formula), traced by the predictor–corrector of seed 001 and joined across pieces; to
-//! CSV (`curve,u,v,x,y,z`), OBJ line elements, or an SVG of the domain with the lines.
+//! `pssurf trace`: curves on a surface. Level lines of a field (K, H, κ1, κ2, |κ1| + |κ2|,
+//! the height or a formula), traced by the predictor–corrector of seed 001 and joined across
+//! pieces; lines of curvature, asymptotic lines and geodesics (in `trace_lines`). To CSV
+//! (`curve,u,v,x,y,z`), OBJ line elements, or an SVG of the domain with the lines.
 
 use std::path::PathBuf;
 
@@ -25,6 +26,8 @@ pub enum Method {
 
 /// Arguments of `pssurf trace`.
 #[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("what").required(true).multiple(false)
+    .args(["level", "curvature_lines", "asymptotic", "geodesic"])))]
 pub struct TraceArgs {
     /// The surface file.
     #[arg(value_name = "SURF.json")]
@@ -32,14 +35,47 @@ pub struct TraceArgs {
     /// A field and its levels: `K=0,0.5`, `H=auto:10` (ten levels over the bulk of the
     /// values), `z=0.1,0.2`, or a formula of u, v, x, y, z, K, H, k1, k2, kabs
     /// (`x^2+y^2=0.25`). Repeat for several fields. `K=0` gives the parabolic lines.
-    #[arg(long, value_name = "FIELD=LEVELS", required = true)]
+    #[arg(long, value_name = "FIELD=LEVELS")]
     pub level: Vec<String>,
+    /// Lines of curvature (both families unless --family), evenly spaced (--seeds) or from
+    /// given points (--from PTS.csv); umbilics are reported.
+    #[arg(long)]
+    pub curvature_lines: bool,
+    /// Asymptotic lines (where K < 0), seeded like --curvature-lines.
+    #[arg(long)]
+    pub asymptotic: bool,
+    /// A geodesic: from --from u,v along --dir du,dv for --length L, or the shortest one
+    /// from --from u,v to --to u,v.
+    #[arg(long)]
+    pub geodesic: bool,
+    /// Which family of lines: 1 (κ1, or +θ for asymptotic lines), 2 (κ2, or −θ) or both.
+    #[arg(long, value_enum, default_value_t = Family::Both)]
+    pub family: Family,
+    /// Evenly spaced lines about 1/N of the domain's diagonal apart (Jobard–Lefer seeding).
+    #[arg(long, value_name = "N", default_value_t = 20,
+        value_parser = clap::value_parser!(u32).range(1..=2000))]
+    pub seeds: u32,
+    /// Seeds: a CSV file with columns u,v (lines through each point), or for --geodesic the
+    /// start point `u,v`.
+    #[arg(long, value_name = "PTS.csv|u,v", allow_hyphen_values = true)]
+    pub from: Option<String>,
+    /// The end point `u,v` of a shortest geodesic.
+    #[arg(long, value_name = "u,v", allow_hyphen_values = true)]
+    pub to: Option<String>,
+    /// The start direction `du,dv` (in parameters) of a geodesic.
+    #[arg(long, value_name = "du,dv", allow_hyphen_values = true)]
+    pub dir: Option<String>,
+    /// The length of a geodesic, or the longest line of curvature each way from its seed
+    /// (in space).
+    #[arg(long, value_name = "L")]
+    pub length: Option<f64>,
     /// Hunting lines per direction on every piece (seed points; more finds smaller loops).
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub hunting: u32,
-    /// The largest step as a fraction of a piece's size.
-    #[arg(long, default_value_t = 0.125)]
-    pub step: f64,
+    /// The largest step as a fraction of a piece's size (level lines) or of the domain's
+    /// diagonal (lines of curvature, asymptotic lines).
+    #[arg(long)]
+    pub step: Option<f64>,
     /// How branches are followed.
     #[arg(long, value_enum, default_value_t = Method::PredictorCorrector)]
     pub method: Method,
@@ -50,6 +86,19 @@ pub struct TraceArgs {
     /// domain with the lines); `-` or nothing for CSV on standard output.
     #[arg(short, long, value_name = "LINES.csv|.obj|.svg")]
     pub output: Option<PathBuf>,
+}
+
+/// Which family of field lines (`--family`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Family {
+    /// κ1 lines (or asymptotic lines at +θ).
+    #[value(name = "1")]
+    First,
+    /// κ2 lines (or asymptotic lines at −θ).
+    #[value(name = "2")]
+    Second,
+    /// Both.
+    Both,
 }
 
 /// One field with its levels.
@@ -97,11 +146,15 @@ fn parse_level(text: &str) -> Result<LevelRequest> {
 
 /// Runs `pssurf trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
-    if !(args.step > 0.0 && args.step <= 1.0) {
+    let step = args.step.unwrap_or(0.125);
+    if !(step > 0.0 && step <= 1.0) {
         bail!("--step must be in (0, 1]");
     }
     if args.max_points == 0 || args.max_points > 100_000_000 {
         bail!("--max-points must be from 1 to 100000000");
+    }
+    if args.curvature_lines || args.asymptotic || args.geodesic {
+        return super::trace_lines::run(args);
     }
     let requests: Vec<LevelRequest> = args
         .level
@@ -125,7 +178,7 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     .check()?;
     let opts = ZeroSetOptions {
         hunting: args.hunting as usize,
-        step: args.step,
+        step,
         max_points: args.max_points,
         method: match args.method {
             Method::PredictorCorrector => TraceMethod::PredictorCorrector,
@@ -227,7 +280,7 @@ fn report(traced: &[(String, ZeroSet)]) {
 }
 
 /// A colour per level (a qualitative palette).
-const PALETTE: [[u8; 3]; 8] = [
+pub(crate) const PALETTE: [[u8; 3]; 8] = [
     [31, 119, 180],
     [214, 39, 40],
     [44, 160, 44],
@@ -244,6 +297,21 @@ fn write(
     traced: &[(String, ZeroSet)],
     curves: &[SurfaceCurve],
 ) -> Result<()> {
+    let colors: Vec<[u8; 3]> = traced
+        .iter()
+        .enumerate()
+        .flat_map(|(k, (_, s))| std::iter::repeat_n(PALETTE[k % PALETTE.len()], s.curves.len()))
+        .collect();
+    write_curves(args, surface, curves, &colors)
+}
+
+/// Writes curves to `--output` as CSV, OBJ or a domain SVG (each curve in its colour).
+pub(crate) fn write_curves(
+    args: &TraceArgs,
+    surface: &pssurf::surface::Surface,
+    curves: &[SurfaceCurve],
+    colors: &[[u8; 3]],
+) -> Result<()> {
     let path = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
     let ext = path
         .extension()
@@ -254,14 +322,15 @@ fn write(
             Ok(pssurf::io::write_curves_obj(w, curves)?)
         })?,
         Some("svg") => {
-            let mut lines = Vec::new();
-            for (k, (_, s)) in traced.iter().enumerate() {
-                lines.extend(s.curves.iter().map(|c| DomainCurve {
+            let lines = curves
+                .iter()
+                .zip(colors)
+                .map(|(c, color)| DomainCurve {
                     uvs: c.uvs.clone(),
                     closed: c.closed,
-                    color: PALETTE[k % PALETTE.len()],
-                }));
-            }
+                    color: *color,
+                })
+                .collect();
             let opts = DomainOptions {
                 refinement: false,
                 ps_triangles: false,

@@ -21,6 +21,14 @@ pub fn ok(args: &[&str]) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
+/// Runs a command that must succeed; its standard error (the report).
+pub fn ok_report(args: &[&str]) -> String {
+    let out = pssurf(args);
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "pssurf {args:?} failed: {err}");
+    err
+}
+
 pub fn fails(args: &[&str]) -> String {
     let out = pssurf(args);
     assert!(!out.status.success(), "pssurf {args:?} should fail");

@@ -188,9 +188,15 @@ pub struct Polyline {
 
 /// Renders a surface of any kind.
 pub fn plot(surface: &Surface, opts: &PlotOptions) -> Picture {
+    plot_with_lines(surface, opts, Vec::new())
+}
+
+/// Renders a surface with extra polylines drawn over it (curves traced on the surface).
+pub fn plot_with_lines(surface: &Surface, opts: &PlotOptions, extra: Vec<Polyline>) -> Picture {
     let need_curvature = matches!(opts.show, Show::Quantity(_));
     let sampled = sample_patches(surface, opts.level, need_curvature);
-    let lines = overlay_lines(surface, &opts.overlays, opts.level);
+    let mut lines = overlay_lines(surface, &opts.overlays, opts.level);
+    lines.extend(extra);
     plot_sampled(&sampled, &lines, opts)
 }
 

@@ -17,7 +17,9 @@ use crate::surface::ParametricSurface;
 pub struct EvenLines {
     /// The lines, in the order they were traced.
     pub lines: Vec<FieldLine>,
-    /// Whether `max_lines` stopped the seeding before the domain was covered.
+    /// The points in all lines.
+    pub points: usize,
+    /// Whether the point limit stopped the seeding before the domain was covered.
     pub truncated: bool,
 }
 
@@ -67,14 +69,29 @@ impl Occupancy {
     }
 }
 
-/// Lines of `family` spaced about `spacing` apart in the parameter domain, at most
-/// `max_lines` of them.
+/// Whether `p` comes within `d` of the walk's own earlier points, leaving out the stretch
+/// within 4d of arc behind it (a spiral around an umbilic or a focus).
+fn spirals(p: Point2<f64>, walked: &[Point2<f64>], d: f64) -> bool {
+    let mut behind = 0.0;
+    let mut previous = p;
+    for q in walked.iter().rev() {
+        behind += (previous - q).norm();
+        previous = *q;
+        if behind > 4.0 * d && (p - q).norm() < d {
+            return true;
+        }
+    }
+    false
+}
+
+/// Lines of `family` spaced about `spacing` apart in the parameter domain, with at most
+/// `max_points` points in all.
 pub fn even_field_lines<S: ParametricSurface + ?Sized>(
     surface: &S,
     family: LineFamily,
     spacing: f64,
     opts: &FieldLineOptions,
-    max_lines: usize,
+    max_points: usize,
 ) -> EvenLines {
     let mut out = EvenLines::default();
     if !(spacing > 0.0 && spacing.is_finite()) {
@@ -92,7 +109,7 @@ pub fn even_field_lines<S: ParametricSurface + ?Sized>(
     };
     let mut next = 0;
     let try_seed = |seed: Point2<f64>, out: &mut EvenLines, occupied: &mut Occupancy| {
-        if out.lines.len() >= max_lines {
+        if out.points >= max_points {
             out.truncated = true;
             return;
         }
@@ -101,8 +118,8 @@ pub fn even_field_lines<S: ParametricSurface + ?Sized>(
         }
         let line = {
             let occ = &*occupied;
-            trace_guarded(surface, family, seed, opts, &mut |p| {
-                occ.near(p, 0.5 * spacing)
+            trace_guarded(surface, family, seed, opts, &mut |p, walked| {
+                occ.near(p, 0.5 * spacing) || spirals(p, walked, 0.5 * spacing)
             })
         };
         if let Ok(line) = line
@@ -112,6 +129,7 @@ pub fn even_field_lines<S: ParametricSurface + ?Sized>(
             if line.curve.closed {
                 occupied.insert(&[*line.curve.uvs.last().unwrap(), line.curve.uvs[0]]);
             }
+            out.points += line.curve.uvs.len();
             out.lines.push(line);
         }
     };

@@ -106,7 +106,7 @@ pub enum LineEnd {
     Length,
     /// The point limit.
     Limit,
-    /// Too near another line (evenly spaced seeding).
+    /// Too near another line or an earlier turn of itself (evenly spaced seeding).
     Near,
     /// The line field jumps across a piece boundary (curvature is discontinuous there, the
     /// surface being only C¹): the directions on the two sides differ by more than 45°, so
@@ -125,7 +125,7 @@ impl LineEnd {
             LineEnd::Closed => "closed",
             LineEnd::Length => "length",
             LineEnd::Limit => "point limit",
-            LineEnd::Near => "near another line",
+            LineEnd::Near => "too near a line",
             LineEnd::Jump => "direction jump at a piece boundary",
         }
     }
@@ -250,17 +250,18 @@ pub fn trace_field_line<S: ParametricSurface + ?Sized>(
     seed: Point2<f64>,
     opts: &FieldLineOptions,
 ) -> Result<FieldLine, FieldLineError> {
-    trace_guarded(surface, family, seed, opts, &mut |_| false)
+    trace_guarded(surface, family, seed, opts, &mut |_, _| false)
 }
 
 /// As [`trace_field_line`], stopping a line (with [`LineEnd::Near`]) at the first accepted
-/// point for which `near` says true.
+/// point for which `near(point, earlier)` says true, `earlier` being the points of the same
+/// walk from the seed so far.
 pub(crate) fn trace_guarded<S: ParametricSurface + ?Sized>(
     surface: &S,
     family: LineFamily,
     seed: Point2<f64>,
     opts: &FieldLineOptions,
-    near: &mut dyn FnMut(Point2<f64>) -> bool,
+    near: &mut Guard,
 ) -> Result<FieldLine, FieldLineError> {
     let positive = |x: f64| x > 0.0 && x.is_finite();
     if !(positive(opts.tolerance)
@@ -332,6 +333,9 @@ pub(crate) fn trace_guarded<S: ParametricSurface + ?Sized>(
     })
 }
 
+/// Says whether a new point (given the walk's earlier points) is too near other lines.
+pub(crate) type Guard<'a> = dyn FnMut(Point2<f64>, &[Point2<f64>]) -> bool + 'a;
+
 /// Follows one way from a seed.
 struct Walker<'a, S: ?Sized> {
     flow: &'a LineFlow<'a, S>,
@@ -354,9 +358,10 @@ impl<S: ParametricSurface + ?Sized> Walker<'_, S> {
         seed: Point2<f64>,
         dir: Vector2<f64>,
         mut cursor: Cursor,
-        near: &mut dyn FnMut(Point2<f64>) -> bool,
+        near: &mut Guard,
     ) -> (Points, LineEnd) {
         let mut out: Points = Vec::new();
+        let mut walked = vec![seed];
         let mut y = State::<2>::new(seed.x, seed.y);
         let mut k = State::<2>::new(dir.x, dir.y);
         let (mut h, mut length, mut far) = (self.ode.max_step * 0.25, 0.0, 0.0_f64);
@@ -401,9 +406,10 @@ impl<S: ParametricSurface + ?Sized> Walker<'_, S> {
                 return (out, LineEnd::Jump);
             }
             last_chord = Some(chord);
-            if near(to) {
+            if near(to, &walked) {
                 return (out, LineEnd::Near);
             }
+            walked.push(to);
             out.push((to, p));
             if turn > MAX_TURN {
                 return (out, LineEnd::Jump);

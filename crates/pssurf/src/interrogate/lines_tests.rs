@@ -301,7 +301,7 @@ fn the_shortest_geodesic_on_a_sphere_has_the_great_circle_arc_length() {
         assert!(g.exact, "shooting did not converge");
         assert_near!(g.length, arc, 1e-8);
         assert!(g.lattice_length >= arc * (1.0 - 1e-12) && g.relaxed_length <= g.lattice_length);
-        assert!((g.curve.uvs.last().unwrap() - b).norm() < 1e-9);
+        assert!((g.curve.uvs.last().unwrap() - b).norm() < 3e-9);
     }
 }
 

@@ -19,6 +19,7 @@ mod level_tests;
 #[cfg(test)]
 mod lines_tests;
 mod ode;
+pub mod probe;
 pub mod sample;
 pub mod section;
 #[cfg(test)]
@@ -44,6 +45,9 @@ pub use geodesic::{
     shortest_geodesic,
 };
 pub use level::{CurvatureRegions, auto_levels, curvature_regions, level_lines, parabolic_lines};
+pub use probe::{
+    Alignment, Circle, CoordinateCurve, CrossPlane, ProbeError, ProbeOptions, ProbeReport, probe,
+};
 pub use sample::{
     SampleCounts, SampledSurface, sample_counts, sample_patches, sample_pieces,
     triangles_per_piece, vertices_per_piece,
