@@ -151,6 +151,7 @@ pub fn export_mesh(
             &[]
         },
         colors: colors.as_deref().filter(|_| format.carries_colors()),
+        lines: &[],
     };
     atomic_write(path, Durability::Atomic, |w| {
         write_mesh(w, format, &mesh).map_err(std::io::Error::other)

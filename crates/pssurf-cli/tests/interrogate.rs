@@ -735,6 +735,29 @@ fn trace_draws_lines_of_curvature_geodesics_and_the_probe_reports_closed_forms()
         &s(&png),
     ]);
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    // …on the domain, and into exported meshes where the format holds lines.
+    let svg = d.path().join("lines.svg");
+    ok(&["domain", &surf, "--lines", &s(&csv), "-o", &s(&svg)]);
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<path"));
+    for (ext, tag) in [
+        ("ply", &b"element edge "[..]),
+        ("vtk", &b"\nLINES "[..]),
+        ("obj", &b"\nl "[..]),
+    ] {
+        let out = d.path().join(format!("mesh.{ext}"));
+        ok(&[
+            "export",
+            &surf,
+            "--level",
+            "0",
+            "--lines",
+            &s(&csv),
+            "-o",
+            &s(&out),
+        ]);
+        let bytes = std::fs::read(&out).unwrap();
+        assert!(bytes.windows(tag.len()).any(|w| w == tag), "{ext}");
+    }
     // The probe: K and H of the bowl, the sections' curvatures κ1 and κ2, zero torsion.
     let json = ok(&["probe", &surf, "--at", "0.3,0.2", "--json"]);
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
@@ -772,6 +795,7 @@ fn trace_draws_lines_of_curvature_geodesics_and_the_probe_reports_closed_forms()
         vec!["probe", &surf, "--at", "9,9"],
         vec!["probe", &surf, "--at", "x"],
         vec!["plot", &surf, "--lines", &surf, "-o", "x.png"],
+        vec!["export", &surf, "--lines", &s(&csv), "-o", "x.stl"],
     ] {
         let msg = fails(&args);
         assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");

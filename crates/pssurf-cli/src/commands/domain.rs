@@ -45,6 +45,10 @@ pub struct DomainArgs {
     /// accepted; the budget (--max-memory, --max-output) decides what runs.
     #[arg(long, value_name = "L", default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=20))]
     pub level: u32,
+    /// Draw curves traced on the surface (a `pssurf trace` CSV), each in its own colour.
+    /// Repeatable.
+    #[arg(long, value_name = "LINES.csv")]
+    pub lines: Vec<PathBuf>,
     /// Picture width in pixels.
     #[arg(long, default_value_t = 900.0)]
     pub width: f64,
@@ -83,7 +87,7 @@ pub fn run(args: &DomainArgs) -> Result<()> {
         range: args.colors.range()?,
         level: args.level,
         width: args.width,
-        curves: Vec::new(),
+        curves: read_domain_curves(&args.lines)?,
     };
     let svg = pssurf_viz::domain_svg(&surface, &opts);
     crate::output::write_output(&args.output, Durability::Atomic, |w| {
@@ -91,4 +95,20 @@ pub fn run(args: &DomainArgs) -> Result<()> {
     })?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
+}
+
+/// The curves of `--lines` files, coloured in turn.
+fn read_domain_curves(paths: &[PathBuf]) -> Result<Vec<pssurf_viz::DomainCurve>> {
+    let mut out = Vec::new();
+    for path in paths {
+        for c in super::plot::read_lines(path)? {
+            let color = super::trace::PALETTE[out.len() % super::trace::PALETTE.len()];
+            out.push(pssurf_viz::DomainCurve {
+                uvs: c.uvs,
+                closed: c.closed,
+                color,
+            });
+        }
+    }
+    Ok(out)
 }

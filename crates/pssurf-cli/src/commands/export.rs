@@ -38,6 +38,10 @@ pub struct ExportArgs {
     /// The mesh file to write.
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
+    /// Curves traced on the surface (a `pssurf trace` CSV) to write with the mesh: PLY
+    /// edges, VTK lines or OBJ line elements. Repeatable.
+    #[arg(long, value_name = "LINES.csv")]
+    pub lines: Vec<PathBuf>,
 }
 
 /// Runs `pssurf export`.
@@ -45,8 +49,23 @@ pub fn run(args: &ExportArgs) -> Result<()> {
     let name = format_name(args);
     let format = MeshFormat::parse(&name).ok_or_else(|| anyhow!("unknown mesh format `{name}` (ply, obj, stl, glb, vtk); give --format or a known extension"))?;
     let fields = requested_fields(args, format, &name)?;
+    if !args.lines.is_empty() && !format.carries_lines() {
+        bail!("--lines: {name} cannot hold lines; use ply, vtk or obj");
+    }
     let surface = crate::budget::load_surface(&args.surface)?;
     estimate(&surface, args.level, format, fields.len()).check()?;
+    let mut lines = Vec::new();
+    for path in &args.lines {
+        for c in super::plot::read_lines(path)? {
+            let mut points = c.points;
+            if c.closed
+                && let Some(first) = points.first()
+            {
+                points.push(*first);
+            }
+            lines.push(points);
+        }
+    }
     let sampled = sample_patches(&surface, args.level, true);
     let field_values: Vec<(String, Vec<f64>)> = if format.carries_fields() {
         fields
@@ -65,6 +84,7 @@ pub fn run(args: &ExportArgs) -> Result<()> {
         mesh: &sampled.mesh,
         fields: &field_values,
         colors: colors.as_deref(),
+        lines: &lines,
     };
     crate::output::write_output(&args.output, Durability::Atomic, |w| {
         pssurf_viz::write_mesh(w, format, &mesh).map_err(|e| anyhow!(e))

@@ -8,6 +8,9 @@
 //! | STL | facets | facet normals | — | — |
 //! | GLB | POSITION, indices (u32) | NORMAL | COLOR_0 (normalised u8 RGBA) | `_K`, `_H`, `_K1`, `_K2`, `_KABS`, … (float) |
 //! | VTK | POINTS double, POLYGONS | NORMALS double | COLOR_SCALARS | SCALARS double |
+//!
+//! Polylines (curves traced on the surface) go into PLY as an `edge` element, into VTK as
+//! `LINES` and into OBJ as `l` elements; STL and glTF refuse them.
 
 pub(crate) mod glb;
 mod obj;
@@ -16,6 +19,8 @@ mod stl;
 mod vtk;
 
 use std::io::Write;
+
+use nalgebra::Vector3;
 
 use pssurf::mesh::TriMesh;
 use thiserror::Error;
@@ -35,6 +40,9 @@ pub struct FieldMesh<'a> {
     pub fields: &'a [(String, Vec<f64>)],
     /// Optional per-vertex colours.
     pub colors: Option<&'a [[u8; 3]]>,
+    /// Polylines to write with the mesh (curves traced on the surface): PLY edges, VTK
+    /// lines, OBJ line elements; STL and glTF refuse them.
+    pub lines: &'a [Vec<Vector3<f64>>],
 }
 
 /// The export formats.
@@ -70,6 +78,11 @@ impl MeshFormat {
         matches!(self, MeshFormat::Ply | MeshFormat::Glb | MeshFormat::Vtk)
     }
 
+    /// Whether the format stores polylines.
+    pub fn carries_lines(self) -> bool {
+        matches!(self, MeshFormat::Ply | MeshFormat::Obj | MeshFormat::Vtk)
+    }
+
     /// Whether the format stores vertex colours.
     pub fn carries_colors(self) -> bool {
         !matches!(self, MeshFormat::Stl)
@@ -98,6 +111,24 @@ pub enum ExportError {
 }
 
 impl FieldMesh<'_> {
+    /// The number of points of all lines.
+    pub fn line_points(&self) -> usize {
+        self.lines.iter().map(Vec::len).sum()
+    }
+
+    /// Each line as a run of point indices, counting after the mesh's vertices.
+    pub fn line_indices(&self) -> Vec<std::ops::Range<usize>> {
+        let mut next = self.mesh.positions.len();
+        self.lines
+            .iter()
+            .map(|l| {
+                let r = next..next + l.len();
+                next += l.len();
+                r
+            })
+            .collect()
+    }
+
     /// Checks that every field and the colours have one entry per vertex.
     pub fn validate(&self) -> Result<(), ExportError> {
         let n = self.mesh.positions.len();
@@ -130,6 +161,11 @@ pub fn write_mesh(
     mesh: &FieldMesh<'_>,
 ) -> Result<(), ExportError> {
     mesh.validate()?;
+    if !mesh.lines.is_empty() && !format.carries_lines() {
+        return Err(ExportError::Unsupported(
+            "this format cannot hold lines: use ply, vtk or obj".into(),
+        ));
+    }
     match format {
         MeshFormat::Ply => write_ply(w, mesh),
         MeshFormat::Obj => write_obj(w, mesh),

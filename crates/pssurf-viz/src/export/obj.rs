@@ -1,4 +1,5 @@
-//! Wavefront OBJ: `v x y z [r g b]`, `vn`, `f a//a b//b c//c`.
+//! Wavefront OBJ: `v x y z [r g b]`, `vn`, `f a//a b//b c//c`, and polylines as `l` elements
+//! over their own `v` points (after the mesh's).
 
 use std::io::Write;
 
@@ -33,6 +34,13 @@ pub fn write_obj(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError
     for t in &m.mesh.triangles {
         let [a, b, c] = t.map(|k| k as u64 + 1);
         writeln!(w, "f {a}//{a} {b}//{b} {c}//{c}")?;
+    }
+    for p in m.lines.iter().flatten() {
+        writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
+    }
+    for run in m.line_indices().into_iter().filter(|r| r.len() >= 2) {
+        let ids: Vec<String> = run.map(|k| (k + 1).to_string()).collect();
+        writeln!(w, "l {}", ids.join(" "))?;
     }
     w.flush()?;
     Ok(())

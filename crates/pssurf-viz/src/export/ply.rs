@@ -64,19 +64,41 @@ impl PropertyAccess for FaceRow {
     }
 }
 
+/// An edge of a polyline (`vertex1`, `vertex2`).
+#[derive(Clone, Copy)]
+struct EdgeRow {
+    ends: [i32; 2],
+}
+
+impl PropertyAccess for EdgeRow {
+    fn new() -> Self {
+        EdgeRow { ends: [0; 2] }
+    }
+    fn get_int(&self, name: &str) -> Option<i32> {
+        match name {
+            "vertex1" => Some(self.ends[0]),
+            "vertex2" => Some(self.ends[1]),
+            _ => None,
+        }
+    }
+}
+
 fn scalar(name: &str, t: ScalarType) -> PropertyDef {
     PropertyDef::new(name.to_string(), PropertyType::Scalar(t))
 }
 
 /// Writes binary PLY: `x y z nx ny nz` as float, `red green blue` as uchar when colours are
-/// given, then one float property per field; faces as `vertex_indices` (uchar count, int).
+/// given, then one float property per field; faces as `vertex_indices` (uchar count, int);
+/// polylines as an `edge` element (`vertex1`, `vertex2`) over their own vertices after the
+/// mesh's (zero normals, black, NaN fields).
 pub fn write_ply(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError> {
     if m.fields.len() > MAX_FIELDS {
         return Err(ExportError::Unsupported(format!(
             "at most {MAX_FIELDS} fields"
         )));
     }
-    if m.mesh.positions.len() > i32::MAX as usize {
+    let total = m.mesh.positions.len() + m.line_points();
+    if total > i32::MAX as usize {
         return Err(ExportError::Unsupported(
             "PLY int indices hold at most 2³¹ − 1 vertices".into(),
         ));
@@ -99,15 +121,33 @@ pub fn write_ply(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError
     for n in &names {
         vertex.properties.add(scalar(n, ScalarType::Float));
     }
-    vertex.count = m.mesh.positions.len();
+    vertex.count = total;
     let mut face = ElementDef::new("face".to_string());
     face.properties.add(PropertyDef::new(
         "vertex_indices".to_string(),
         PropertyType::List(ScalarType::UChar, ScalarType::Int),
     ));
     face.count = m.mesh.triangles.len();
+    let edges: Vec<EdgeRow> = m
+        .line_indices()
+        .into_iter()
+        .flat_map(|r| {
+            let (a, b) = (r.start, r.end);
+            (a..b.saturating_sub(1)).map(|k| EdgeRow {
+                ends: [k as i32, k as i32 + 1],
+            })
+        })
+        .collect();
+    let mut edge = ElementDef::new("edge".to_string());
+    for p in ["vertex1", "vertex2"] {
+        edge.properties.add(scalar(p, ScalarType::Int));
+    }
+    edge.count = edges.len();
     header.elements.add(vertex.clone());
     header.elements.add(face.clone());
+    if !edges.is_empty() {
+        header.elements.add(edge.clone());
+    }
 
     let rows: Vec<VertexRow<'_>> = (0..m.mesh.positions.len())
         .map(|k| {
@@ -123,6 +163,15 @@ pub fn write_ply(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError
                 rgb: m.colors.map_or([0; 3], |c| c[k]),
             }
         })
+        .chain(m.lines.iter().flatten().map(|p| {
+            let mut values = [f32::NAN; 6 + MAX_FIELDS];
+            values[..6].copy_from_slice(&[p.x as f32, p.y as f32, p.z as f32, 0.0, 0.0, 0.0]);
+            VertexRow {
+                names: &names,
+                values,
+                rgb: [0; 3],
+            }
+        }))
         .collect();
     let faces: Vec<FaceRow> = m
         .mesh
@@ -136,6 +185,9 @@ pub fn write_ply(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError
     Writer::<VertexRow<'_>>::new().write_header(&mut out, &header)?;
     Writer::<VertexRow<'_>>::new().write_payload_of_element(&mut out, &rows, &vertex, &header)?;
     Writer::<FaceRow>::new().write_payload_of_element(&mut out, &faces, &face, &header)?;
+    if !edges.is_empty() {
+        Writer::<EdgeRow>::new().write_payload_of_element(&mut out, &edges, &edge, &header)?;
+    }
     out.flush()?;
     Ok(())
 }

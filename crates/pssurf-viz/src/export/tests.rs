@@ -59,9 +59,89 @@ fn export(d: &Data, format: MeshFormat) -> Vec<u8> {
         mesh: &d.mesh,
         fields: &d.fields,
         colors: Some(&d.colors),
+        lines: &[],
     };
     write_mesh(&mut out, format, &m).unwrap();
     out
+}
+
+/// Two polylines of 3 and 4 points.
+fn lines() -> Vec<Vec<nalgebra::Vector3<f64>>> {
+    let p = |x: f64, y: f64| nalgebra::Vector3::new(x, y, 0.5);
+    vec![
+        vec![p(0.0, 0.0), p(0.1, 0.0), p(0.2, 0.1)],
+        vec![p(0.3, 0.3), p(0.4, 0.3), p(0.5, 0.4), p(0.6, 0.6)],
+    ]
+}
+
+fn export_with_lines(d: &Data, format: MeshFormat) -> Result<Vec<u8>, ExportError> {
+    let mut out = Vec::new();
+    let lines = lines();
+    let m = FieldMesh {
+        mesh: &d.mesh,
+        fields: &d.fields,
+        colors: Some(&d.colors),
+        lines: &lines,
+    };
+    write_mesh(&mut out, format, &m).map(|_| out)
+}
+
+#[test]
+fn polylines_go_into_ply_edges_vtk_lines_and_obj_line_elements() {
+    let d = data();
+    let n = d.mesh.positions.len();
+    // PLY: 7 more vertices, then 2 + 3 edges between consecutive ones, at the end.
+    let ply = export_with_lines(&d, MeshFormat::Ply).unwrap();
+    let end = ply.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    let header = std::str::from_utf8(&ply[..end]).unwrap();
+    assert!(
+        header.contains(&format!("element vertex {}\n", n + 7)),
+        "{header}"
+    );
+    assert!(header.contains("element edge 5\nproperty int vertex1\nproperty int vertex2\n"));
+    let tail = &ply[ply.len() - 40..];
+    let ints: Vec<i32> = tail
+        .chunks(4)
+        .map(|c| i32::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    let m = n as i32;
+    assert_eq!(
+        ints,
+        [
+            m,
+            m + 1,
+            m + 1,
+            m + 2,
+            m + 3,
+            m + 4,
+            m + 4,
+            m + 5,
+            m + 5,
+            m + 6
+        ]
+    );
+    // VTK: LINES 2 9 with the runs n..n+3 and n+3..n+7.
+    let vtk = export_with_lines(&d, MeshFormat::Vtk).unwrap();
+    let tag = b"\nLINES 2 9\n";
+    let at = vtk.windows(tag.len()).position(|w| w == tag).unwrap() + tag.len();
+    let ints: Vec<i32> = vtk[at..at + 36]
+        .chunks(4)
+        .map(|c| i32::from_be_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(ints, [3, m, m + 1, m + 2, 4, m + 3, m + 4, m + 5, m + 6]);
+    let points = format!("POINTS {} double\n", n + 7);
+    assert!(vtk.windows(points.len()).any(|w| w == points.as_bytes()));
+    // OBJ: l elements over the points after the mesh's (1-based).
+    let obj = String::from_utf8(export_with_lines(&d, MeshFormat::Obj).unwrap()).unwrap();
+    assert!(obj.contains(&format!("\nl {} {} {}\n", n + 1, n + 2, n + 3)));
+    assert!(obj.contains(&format!("\nl {} {} {} {}\n", n + 4, n + 5, n + 6, n + 7)));
+    // STL and glTF cannot hold lines: an error, not a silent drop.
+    for f in [MeshFormat::Stl, MeshFormat::Glb] {
+        assert!(matches!(
+            export_with_lines(&d, f),
+            Err(ExportError::Unsupported(_))
+        ));
+    }
 }
 
 fn close32(a: f64, b: f64) -> bool {
@@ -275,6 +355,7 @@ fn fields_of_the_wrong_length_are_refused() {
         mesh: &d.mesh,
         fields: &bad,
         colors: None,
+        lines: &[],
     };
     let e = write_mesh(&mut Vec::new(), MeshFormat::Ply, &m).unwrap_err();
     assert!(e.to_string().contains("field 'K' has 3 values"), "{e}");

@@ -19,11 +19,14 @@ fn token(name: &str) -> String {
         .collect()
 }
 
-/// Writes binary legacy VTK: POINTS (double), POLYGONS, and as POINT_DATA the NORMALS, the
-/// colours (COLOR_SCALARS) and one SCALARS array (double) per field.
+/// Writes binary legacy VTK: POINTS (double), POLYGONS, LINES (the polylines, whose points
+/// follow the mesh's), and as POINT_DATA the NORMALS, the colours (COLOR_SCALARS) and one
+/// SCALARS array (double) per field (zero normals, black and NaN on the lines' points).
 pub fn write_vtk(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError> {
-    let (n, t) = (m.mesh.positions.len(), m.mesh.triangles.len());
-    if 4 * t > i32::MAX as usize {
+    let (mesh_points, t) = (m.mesh.positions.len(), m.mesh.triangles.len());
+    let extra = m.line_points();
+    let n = mesh_points + extra;
+    if 4 * t > i32::MAX as usize || n + m.lines.len() > i32::MAX as usize {
         return Err(ExportError::Unsupported(
             "too many triangles for legacy VTK".into(),
         ));
@@ -35,7 +38,11 @@ pub fn write_vtk(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError
     )?;
     doubles(
         &mut w,
-        m.mesh.positions.iter().flat_map(|p| [p.x, p.y, p.z]),
+        m.mesh
+            .positions
+            .iter()
+            .chain(m.lines.iter().flatten())
+            .flat_map(|p| [p.x, p.y, p.z]),
     )?;
     write!(w, "\nPOLYGONS {t} {}\n", 4 * t)?;
     for tri in &m.mesh.triangles {
@@ -44,14 +51,33 @@ pub fn write_vtk(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError
             w.write_all(&(k as i32).to_be_bytes())?;
         }
     }
+    if !m.lines.is_empty() {
+        let runs = m.line_indices();
+        let size: usize = runs.iter().map(|r| 1 + r.len()).sum();
+        write!(w, "\nLINES {} {size}\n", runs.len())?;
+        for r in runs {
+            w.write_all(&(r.len() as i32).to_be_bytes())?;
+            for k in r {
+                w.write_all(&(k as i32).to_be_bytes())?;
+            }
+        }
+    }
     write!(w, "\nPOINT_DATA {n}\nNORMALS normals double\n")?;
-    doubles(&mut w, m.mesh.normals.iter().flat_map(|p| [p.x, p.y, p.z]))?;
+    doubles(
+        &mut w,
+        m.mesh
+            .normals
+            .iter()
+            .flat_map(|p| [p.x, p.y, p.z])
+            .chain(std::iter::repeat_n(0.0, 3 * extra)),
+    )?;
     if let Some(colors) = m.colors {
         // Binary COLOR_SCALARS are unsigned chars.
         write!(w, "\nCOLOR_SCALARS colors 3\n")?;
         for c in colors {
             w.write_all(c)?;
         }
+        w.write_all(&vec![0u8; 3 * extra])?;
     }
     for (name, values) in m.fields {
         write!(
@@ -59,7 +85,13 @@ pub fn write_vtk(w: &mut dyn Write, m: &FieldMesh<'_>) -> Result<(), ExportError
             "\nSCALARS {} double 1\nLOOKUP_TABLE default\n",
             token(name)
         )?;
-        doubles(&mut w, values.iter().copied())?;
+        doubles(
+            &mut w,
+            values
+                .iter()
+                .copied()
+                .chain(std::iter::repeat_n(f64::NAN, extra)),
+        )?;
     }
     writeln!(w)?;
     w.flush()?;

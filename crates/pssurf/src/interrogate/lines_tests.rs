@@ -48,8 +48,18 @@ fn saddle(seed: u64) -> Surface {
 #[test]
 fn lines_of_curvature_of_a_paraboloid_of_revolution_are_parallels_and_meridians() {
     let mut r = rng(1501);
-    for seed in 0..4 {
-        let s = elliptic_paraboloid(1.0, 1.0, 1510 + seed);
+    // A PS-spline and a quadratic Bézier triangle, both exactly z = (x² + y²)/2.
+    let big = Triangle2::new(
+        Point2::new(-3.0, -3.0),
+        Point2::new(4.0, -2.0),
+        Point2::new(0.0, 4.0),
+    );
+    let surfaces = (0..3)
+        .map(|seed| elliptic_paraboloid(1.0, 1.0, 1510 + seed))
+        .chain([Surface::Bezier(interpolating_bezier(big, 2, |p| {
+            Vector3::new(p.x, p.y, 0.5 * (p.x * p.x + p.y * p.y))
+        }))]);
+    for s in surfaces {
         let angle = uniform(&mut r, 0.0, std::f64::consts::TAU);
         let radius = uniform(&mut r, 0.2, 0.9);
         let p = Point2::new(radius * angle.cos(), radius * angle.sin());
