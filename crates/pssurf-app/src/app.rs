@@ -413,6 +413,9 @@ impl App {
     fn update_vertex_mesh(&mut self, object: usize, old: u64, vertex: usize, pieces: &[usize]) {
         let display = &self.view.display;
         let scene = &self.doc.scene;
+        if let Some(o) = scene.objects.get(object) {
+            self.runtime.curves.edited(o, old, pieces);
+        }
         (self.runtime.cache).update_vertex(scene, object, old, vertex, pieces, display);
     }
 
@@ -461,11 +464,23 @@ impl App {
         }
     }
 
+    /// Traces curves on object `object` (the status line says what came out, or why not).
+    pub fn trace_curves(&mut self, object: usize, request: crate::curves::CurveRequest) {
+        let what = request.describe();
+        self.status = match self.runtime.curves.add(&self.doc.scene, object, request) {
+            Ok(summary) => format!("traced {what}: {summary}"),
+            Err(e) => format!("could not trace {what}: {e}"),
+        };
+        self.refresh_probe();
+    }
+
     /// Recomputes the probe after its object changed, and its lines after the probe or its
     /// settings changed.
     pub fn refresh_probe(&mut self) {
         let size = self.scene_size();
         (self.runtime.probe).refresh(&self.doc.scene, &self.view.probe, size);
+        self.runtime.curves.refresh(&self.doc.scene);
+        self.runtime.join_extra_lines();
     }
 
     /// Fits the camera to the visible objects in a view of the given aspect ratio.
@@ -516,6 +531,11 @@ impl App {
             Command::Select(s) => self.doc.select(s),
             Command::SetProbe { object, uv } => self.set_probe(object, uv),
             Command::RemoveProbe => self.runtime.probe.clear(),
+            Command::TraceCurves { object, request } => self.trace_curves(object, request),
+            Command::ClearCurves(id) => {
+                self.runtime.curves.clear(id);
+                self.status = "removed the traced curves".into();
+            }
             Command::SetVertex {
                 object,
                 vertex,

@@ -75,6 +75,15 @@ pub enum Command {
     },
     /// Remove the probe.
     RemoveProbe,
+    /// Trace curves on an object (kept and drawn until cleared; they follow edits).
+    TraceCurves {
+        /// The object's index.
+        object: usize,
+        /// What to trace.
+        request: crate::curves::CurveRequest,
+    },
+    /// Remove the traced curves of one object (by identity), or all of them.
+    ClearCurves(Option<u64>),
     /// Set a vertex's control points as one undoable edit.
     SetVertex {
         /// The object's index.

@@ -197,6 +197,14 @@ impl DomainView {
         if let Some(v) = cx.doc.selection.vertex {
             shapes.extend(selection_shapes(basis, &map, v));
         }
+        for (uvs, color) in cx.runtime.curves.domain_polylines(object.id) {
+            let points: Vec<Pos2> = uvs.iter().map(|p| map.to_screen(*p)).collect();
+            let [r, g, b] = color;
+            shapes.push(Shape::line(
+                points,
+                Stroke::new(1.5, Color32::from_rgb(r, g, b)),
+            ));
+        }
         if let Some(p) = cx.probe().filter(|p| p.object == i) {
             shapes.push(Shape::circle_stroke(
                 map.to_screen(p.uv),

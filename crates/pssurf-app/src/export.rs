@@ -229,7 +229,7 @@ pub fn export_picture(
         &state.device,
         &state.queue,
         &cache.geometry,
-        &runtime.probe.lines,
+        &runtime.extra,
         &uniforms,
         scene_size,
     )?;

@@ -17,6 +17,7 @@ pub mod cache;
 pub mod camera;
 pub mod command;
 pub mod create;
+pub mod curves;
 pub mod demo;
 pub mod display;
 pub mod document;

@@ -4,7 +4,9 @@
 //! principal directions.
 
 use nalgebra::{Point2, Point3, Vector3};
-use pssurf::interrogate::{Curvature, SectionOptions, plane_section};
+use pssurf::interrogate::{
+    CoordinateCurve, Curvature, SectionOptions, coordinate_curves, plane_section,
+};
 use pssurf::surface::{Cursor, ParametricSurface};
 use pssurf::text::Significant;
 
@@ -36,6 +38,8 @@ pub struct ProbeSettings {
     pub circles: bool,
     /// Draw the normal and the principal directions.
     pub glyphs: bool,
+    /// Draw the torsion coils of the coordinate curves (seed 003).
+    pub coil: bool,
     /// The size of the planes, sections, circles and glyphs, in percent of their default
     /// (which follows the scene's diameter): 5 … 400.
     pub size_percent: u32,
@@ -56,6 +60,7 @@ impl Default for ProbeSettings {
             sections: true,
             circles: true,
             glyphs: true,
+            coil: false,
             size_percent: 100,
         }
     }
@@ -78,6 +83,8 @@ pub struct Probe {
     pub curvature: Option<Curvature>,
     /// The cross-planes and what lies in them (None at a singular point).
     pub cross: Option<CrossPlanes>,
+    /// The u- and v-coordinate curves' Frenet frames and torsion (scene units), if defined.
+    pub coordinate: Option<[CoordinateCurve; 2]>,
 }
 
 /// The two cross-planes of a probe.
@@ -156,6 +163,17 @@ pub fn probe_at(
             sections,
         }
     });
+    let coordinate = coordinate_curves(surface, uv).ok().map(|(cc, _)| {
+        cc.map(|mut c| {
+            // Curvature and torsion scale as 1/length; the frame rotates.
+            c.curvature /= s;
+            c.torsion = c.torsion.map(|t| t / s);
+            c.tangent = rotation * c.tangent;
+            c.normal = c.normal.map(|v| rotation * v);
+            c.binormal = c.binormal.map(|v| rotation * v);
+            c
+        })
+    });
     let curvature = local.map(|mut c| {
         // Curvatures scale as 1/length (K as 1/length²); directions rotate.
         c.gaussian /= s * s;
@@ -175,6 +193,7 @@ pub fn probe_at(
         point: to_scene(&jet.value),
         curvature,
         cross,
+        coordinate,
     })
 }
 
@@ -214,7 +233,57 @@ pub fn probe_lines(p: &Probe, settings: &ProbeSettings, size: f64) -> Vec<LineVe
     if settings.glyphs {
         polyline(&[p.point, p.point + 1.5 * glyph * n], COLORS[2], &mut out);
     }
+    if settings.coil
+        && let Some(cc) = &p.coordinate
+    {
+        for (k, c) in cc.iter().enumerate() {
+            torsion_coil(p.point, n, c, 0.125 * size, COLORS[k], &mut out);
+        }
+    }
     out
+}
+
+/// The seed's torsion coil of a coordinate curve: a sheet rolled from the normal line at the
+/// point, tangent to the curve, curling to the side of the plane (tangent, normal) where the
+/// curve's binormal lies. Its first radius is 1/|τ| and shrinks by 20 % every half turn; it
+/// is `reach` long and 2·`reach` high. Zero torsion leaves it flat, on the plane.
+pub fn torsion_coil(
+    point: Vector3<f64>,
+    n: Vector3<f64>,
+    c: &CoordinateCurve,
+    reach: f64,
+    color: [u8; 3],
+    out: &mut Vec<LineVertex>,
+) {
+    let t = (c.tangent - n * c.tangent.dot(&n)).normalize();
+    let side = n.cross(&t);
+    let (tau, b) = (c.torsion.unwrap_or(0.0), c.binormal.unwrap_or(side));
+    let m = if b.dot(&side) >= 0.0 { side } else { -side };
+    let r0 = if tau == 0.0 {
+        f64::INFINITY
+    } else {
+        1.0 / tau.abs()
+    };
+    let mut spiral = vec![point];
+    let (mut phi, mut travelled, mut q) = (0.0f64, 0.0, point);
+    let steps = 200;
+    let ds = reach / steps as f64;
+    for _ in 0..steps {
+        let r = r0 * 0.8f64.powf(phi / std::f64::consts::PI);
+        q += (t * phi.cos() + m * phi.sin()) * ds;
+        phi += if r.is_finite() { ds / r } else { 0.0 };
+        travelled += ds;
+        spiral.push(q);
+    }
+    debug_assert!((travelled - reach).abs() < 1e-9 * reach.max(1.0));
+    let dark = color.map(|x| x / 2);
+    for h in [-reach, reach] {
+        let edge: Vec<Vector3<f64>> = spiral.iter().map(|p| p + n * h).collect();
+        polyline(&edge, dark, out);
+    }
+    for p in spiral.iter().step_by(steps / 8) {
+        polyline(&[p - n * reach, p + n * reach], dark, out);
+    }
 }
 
 /// The corners of the two cross-planes (squares of side 0.25·`size` centred at the point), for
@@ -281,6 +350,50 @@ fn polyline(points: &[Vector3<f64>], color: [u8; 3], out: &mut Vec<LineVertex>) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_torsion_coil_is_flat_without_torsion_and_curls_to_the_binormal_with_radius_one_over_tau()
+    {
+        let (p, n, t) = (Vector3::new(1.0, 2.0, 3.0), Vector3::z(), Vector3::x());
+        let curve = |tau: f64, binormal: Vector3<f64>| CoordinateCurve {
+            curvature: 1.0,
+            torsion: Some(tau),
+            tangent: t,
+            normal: Some(n),
+            binormal: Some(binormal),
+        };
+        let points = |c: &CoordinateCurve| {
+            let mut out = Vec::new();
+            torsion_coil(p, n, c, 0.5, [0, 0, 0], &mut out);
+            out.iter()
+                .map(|v| v.position.map(f64::from).into())
+                .collect::<Vec<Vector3<f64>>>()
+        };
+        // τ = 0: every point lies in the plane of t and n through p.
+        for q in points(&curve(0.0, -Vector3::y())) {
+            assert!((q.y - p.y).abs() < 1e-6, "{q}");
+        }
+        // τ = 2: radius 1/2 at first, towards the binormal's side (−y here).
+        let q = points(&curve(2.0, -Vector3::y()));
+        let bottom: Vec<Vector3<f64>> = q
+            .iter()
+            .filter(|v| (v.z - (p.z - 0.5)).abs() < 1e-6)
+            .copied()
+            .collect();
+        assert!(bottom.iter().all(|v| v.y <= p.y + 1e-6));
+        let near = bottom
+            .iter()
+            .find(|v| ((*v - p).xy().norm() - 0.05).abs() < 3e-3)
+            .unwrap();
+        // Its radius there, from the chord c and the deviation d from the tangent: c²/(2d),
+        // 1/τ = 0.5 to within the glyph's drawing error (steps of 1/400 of its length).
+        let (c, d) = ((near - p).xy().norm(), p.y - near.y);
+        assert!(
+            (c * c / (2.0 * d) - 0.5).abs() < 0.05,
+            "radius {}",
+            c * c / (2.0 * d)
+        );
+    }
 
     #[test]
     fn an_osculating_circle_passes_through_the_point_with_radius_one_over_kappa() {

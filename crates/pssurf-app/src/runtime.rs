@@ -4,7 +4,11 @@
 
 use eframe::egui_wgpu::RenderState;
 
+use std::sync::Arc;
+
 use crate::cache::GeometryCache;
+use crate::curves::CurvesState;
+use crate::gpu::LineSet;
 use crate::probe::ProbeState;
 
 /// The application's rebuildable resources.
@@ -14,7 +18,30 @@ pub struct Runtime {
     pub cache: GeometryCache,
     /// The probe and its lines.
     pub probe: ProbeState,
+    /// The traced curves and their lines.
+    pub curves: CurvesState,
+    /// The probe's and the curves' lines together, as the 3D view draws them.
+    pub extra: Arc<LineSet>,
+    /// The generations `extra` was made from.
+    extra_key: (u64, u64),
     /// The wgpu device and queue, when the 3D view's GPU resources are installed (the view
     /// and the picture export need them).
     pub gpu: Option<RenderState>,
+}
+
+impl Runtime {
+    /// Joins the probe's and the curves' lines into `extra` when either changed.
+    pub fn join_extra_lines(&mut self) {
+        let key = (self.probe.lines.generation, self.curves.lines.generation);
+        if key == self.extra_key {
+            return;
+        }
+        let mut lines = self.probe.lines.lines.clone();
+        lines.extend_from_slice(&self.curves.lines.lines);
+        self.extra = Arc::new(LineSet {
+            generation: crate::scene::fresh_revision(),
+            lines,
+        });
+        self.extra_key = key;
+    }
 }

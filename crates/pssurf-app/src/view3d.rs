@@ -157,7 +157,7 @@ fn paint_scene(ui: &egui::Ui, rect: Rect, cx: &ViewContext<'_>) {
     if cx.runtime.gpu.is_some() {
         let cb = ViewCallback {
             geometry: cx.runtime.cache.geometry.clone(),
-            extra: cx.runtime.probe.lines.clone(),
+            extra: cx.runtime.extra.clone(),
             uniforms: uniforms(cx.view, size),
             size,
         };

@@ -217,6 +217,9 @@ fn probe_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         ui.checkbox(&mut s.sections, "sections");
         ui.checkbox(&mut s.circles, "osculating circles");
         ui.checkbox(&mut s.glyphs, "normal, directions");
+        ui.checkbox(&mut s.coil, "torsion coils").on_hover_text(
+            "The torsion of the coordinate curves (zero inside PS pieces: they are parabolas)",
+        );
     });
     ui.add(egui::Slider::new(&mut s.size_percent, 5..=400).text("size %"))
         .on_hover_text("The size of the planes, sections, circles and glyphs");

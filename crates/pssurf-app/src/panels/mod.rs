@@ -4,10 +4,12 @@
 //! curvature, hole filling, NURBS) plug in by implementing [`Panel`] and adding one line to
 //! [`default_panels`].
 
+mod curves;
 mod noise;
 mod subdivision;
 mod wavelet;
 
+pub use curves::CurvesPanel;
 pub use noise::NoisePanel;
 pub use subdivision::SubdivisionPanel;
 pub use wavelet::WaveletPanel;
@@ -38,6 +40,7 @@ pub fn default_panels() -> Vec<Box<dyn Panel>> {
         Box::new(SubdivisionPanel::default()),
         Box::new(WaveletPanel::default()),
         Box::new(NoisePanel::default()),
+        Box::new(CurvesPanel::default()),
     ]
 }
 

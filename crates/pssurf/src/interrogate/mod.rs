@@ -46,7 +46,8 @@ pub use geodesic::{
 };
 pub use level::{CurvatureRegions, auto_levels, curvature_regions, level_lines, parabolic_lines};
 pub use probe::{
-    Alignment, Circle, CoordinateCurve, CrossPlane, ProbeError, ProbeOptions, ProbeReport, probe,
+    Alignment, Circle, CoordinateCurve, CrossPlane, ProbeError, ProbeOptions, ProbeReport,
+    coordinate_curves, probe,
 };
 pub use sample::{
     SampleCounts, SampledSurface, sample_counts, sample_patches, sample_pieces,

@@ -166,11 +166,7 @@ pub fn probe(
             }),
         }
     });
-    let (third, torsion_source) = third_derivatives(surface, uv);
-    let coordinate_curves = [
-        frenet(&j.dx, &j.dxx, &third[0]),
-        frenet(&j.dy, &j.dyy, &third[1]),
-    ];
+    let (coordinate_curves, torsion_source) = coordinate_curves(surface, uv)?;
     Ok(ProbeReport {
         uv,
         point: j.value,
@@ -182,6 +178,27 @@ pub fn probe(
         coordinate_curves,
         torsion_source,
     })
+}
+
+/// The curvature, torsion and Frenet frame of the coordinate curves u ↦ s(u, v) and
+/// v ↦ s(u, v) through `uv`, and why their torsion is what it is (exact third derivatives, or
+/// zero because the pieces are quadratic).
+pub fn coordinate_curves(
+    surface: &Surface,
+    uv: Point2<f64>,
+) -> Result<([CoordinateCurve; 2], &'static str), ProbeError> {
+    let j = surface
+        .jet(uv)
+        .map_err(|_| ProbeError::Outside(uv.x, uv.y))?
+        .jet;
+    let (third, source) = third_derivatives(surface, uv);
+    Ok((
+        [
+            frenet(&j.dx, &j.dxx, &third[0]),
+            frenet(&j.dy, &j.dyy, &third[1]),
+        ],
+        source,
+    ))
 }
 
 /// The parameter direction (du, dv) that s maps onto the tangent vector `d`.
