@@ -4,14 +4,19 @@
 //! tangent direction (the probe of seed 003, section 3).
 //!
 //! The curve is the zero set of f(u, v) = (s(u, v) − p₀)·m in the parameter domain (m the
-//! plane's normal). It is followed by predictor–corrector continuation: a step along the
-//! domain tangent (−f_v, f_u) of the zero set, sized to move `step` in space, then Newton
-//! steps along ∇f back onto f = 0 (to 1e-13 of the surface's size), halving the step when
-//! the corrector does not converge or leaves the domain.
+//! plane's normal). It is followed by the predictor–corrector continuation that traces level
+//! lines too ([`super::continuation::Follow`]): a step along the domain tangent (−f_v, f_u)
+//! of the zero set, sized to move `step` in space, then Newton steps along ∇f back onto f = 0
+//! (to 1e-13 of the surface's size), halving the step when the corrector does not converge,
+//! the tangent turns too much or the point leaves the domain. A section that comes back to
+//! its start is closed.
 
 use nalgebra::{Point2, Vector2, Vector3};
 use thiserror::Error;
 
+use std::cell::Cell;
+
+use super::continuation::{Branch, End, Exit, Follow, Region, Sample};
 use crate::surface::{Cursor, ParametricSurface};
 
 /// How far and how finely a section is traced.
@@ -32,6 +37,9 @@ pub struct SectionCurve {
     pub uvs: Vec<Point2<f64>>,
     /// The index of the start point in `points`.
     pub start: usize,
+    /// Whether the section came back to its start (a closed curve; the start is not
+    /// repeated at the end).
+    pub closed: bool,
 }
 
 /// Why a section could not be traced.
@@ -66,130 +74,94 @@ pub fn plane_section<S: ParametricSurface + ?Sized>(
     if !good(opts.step) || !good(opts.length) {
         return Err(SectionError::BadInput);
     }
-    let mut cursor = surface.cursor_near(uv0);
+    let cursor = Cell::new(surface.cursor_near(uv0));
     let start = surface
-        .jet_with(uv0, &mut cursor)
+        .jet_with(uv0, &mut cursor.get())
         .map_err(|_| SectionError::Outside(uv0.x, uv0.y))?
         .jet;
-    let tracer = Tracer {
-        surface,
-        origin: start.value,
-        m,
-        tolerance: 1e-13 * (1.0 + start.value.norm() + opts.length),
+    let origin = start.value;
+    let mut f = |uv: Point2<f64>| -> Option<Sample> {
+        let mut c = cursor.get();
+        let j = surface.jet_with(uv, &mut c).ok()?.jet;
+        cursor.set(c);
+        Some(Sample {
+            f: (j.value - origin).dot(&m),
+            grad: Vector2::new(j.dx.dot(&m), j.dy.dot(&m)),
+            point: j.value,
+            su: j.dx,
+            sv: j.dy,
+        })
     };
-    let t = tracer
-        .domain_tangent(&start.dx, &start.dy)
-        .ok_or(SectionError::Tangent)?;
+    let first = f(uv0).ok_or(SectionError::Outside(uv0.x, uv0.y))?;
+    let size = start.dx.norm() + start.dy.norm();
+    if first.grad.norm() <= 1e-12 * size {
+        return Err(SectionError::Tangent);
+    }
     // Orient the curve along m × n.
+    let t = Vector2::new(-first.grad.y, first.grad.x).normalize();
     let along = m.cross(&start.dx.cross(&start.dy));
-    let sign = if (start.dx * t.x + start.dy * t.y).dot(&along) >= 0.0 {
-        1.0
+    let t = if (start.dx * t.x + start.dy * t.y).dot(&along) >= 0.0 {
+        t
     } else {
-        -1.0
+        -t
     };
-    let mut forward = tracer.trace(uv0, cursor, sign, opts);
-    let backward = tracer.trace(uv0, cursor, -sign, opts);
+    let follow = Follow {
+        step: opts.step,
+        in_space: true,
+        min_fraction: 1e-9,
+        max_turn: 0.2,
+        tolerance: 1e-13 * (1.0 + origin.norm() + opts.length),
+        singular: 1e-12 * size,
+        length: opts.length,
+        max_points: MAX_POINTS,
+    };
+    let region = WholeDomain {
+        surface,
+        cursor: &cursor,
+    };
+    let forward = follow.run(&mut f, &region, (uv0, first), t, &mut |_, _| false);
+    let backward = if forward.end == End::Closed {
+        Branch::empty()
+    } else {
+        follow.run(&mut f, &region, (uv0, first), -t, &mut |_, _| false)
+    };
     let mut out = SectionCurve {
-        start: backward.len(),
+        start: backward.uvs.len(),
+        closed: forward.end == End::Closed,
         ..Default::default()
     };
-    for (p, uv) in backward.into_iter().rev() {
-        out.points.push(p);
-        out.uvs.push(uv);
-    }
-    out.points.push(start.value);
+    out.points.extend(backward.points.iter().rev());
+    out.uvs.extend(backward.uvs.iter().rev());
+    out.points.push(origin);
     out.uvs.push(uv0);
-    for (p, uv) in forward.drain(..) {
-        out.points.push(p);
-        out.uvs.push(uv);
-    }
+    // A closed section ends on its start: that point is not repeated.
+    let n = forward.uvs.len() - usize::from(forward.end == End::Closed);
+    out.points.extend(&forward.points[..n]);
+    out.uvs.extend(&forward.uvs[..n]);
     Ok(out)
 }
 
-/// The most points traced each way (a guard against endless loops on closed sections).
+/// The most points traced each way (a guard against endless loops).
 const MAX_POINTS: usize = 100_000;
 
-struct Tracer<'a, S: ?Sized> {
+/// The surface's whole domain as a region: a point is in it when the surface is defined
+/// there (its point location is exact); it has no edges to solve on, so a section ends
+/// within the smallest step of the boundary.
+struct WholeDomain<'a, S: ?Sized> {
     surface: &'a S,
-    origin: Vector3<f64>,
-    m: Vector3<f64>,
-    tolerance: f64,
+    cursor: &'a Cell<Cursor>,
 }
 
-impl<S: ParametricSurface + ?Sized> Tracer<'_, S> {
-    /// The unit direction of the zero set of f in the domain, from s_u and s_v; None where
-    /// ∇f vanishes (plane tangent to the surface, or a singular point).
-    fn domain_tangent(&self, su: &Vector3<f64>, sv: &Vector3<f64>) -> Option<Vector2<f64>> {
-        let g = Vector2::new(su.dot(&self.m), sv.dot(&self.m));
-        let size = su.norm() + sv.norm();
-        (g.norm() > 1e-12 * size).then(|| Vector2::new(-g.y, g.x).normalize())
+impl<S: ParametricSurface + ?Sized> Region for WholeDomain<'_, S> {
+    fn contains(&self, p: Point2<f64>) -> bool {
+        let mut c = self.cursor.get();
+        let inside = self.surface.jet_with(p, &mut c).is_ok();
+        self.cursor.set(c);
+        inside
     }
 
-    /// Follows the curve from `uv0` in direction `sign`; the points after the start.
-    fn trace(
-        &self,
-        uv0: Point2<f64>,
-        mut cursor: Cursor,
-        sign: f64,
-        opts: SectionOptions,
-    ) -> Vec<(Vector3<f64>, Point2<f64>)> {
-        let mut out = Vec::new();
-        let (mut uv, mut previous): (Point2<f64>, Option<Vector2<f64>>) = (uv0, None);
-        let mut travelled = 0.0;
-        while travelled < opts.length && out.len() < MAX_POINTS {
-            let Ok(j) = self.surface.jet_with(uv, &mut cursor) else {
-                break;
-            };
-            let Some(mut t) = self.domain_tangent(&j.jet.dx, &j.jet.dy) else {
-                break;
-            };
-            t *= previous.map_or(sign, |p| p.dot(&t).signum());
-            let speed = (j.jet.dx * t.x + j.jet.dy * t.y).norm();
-            if speed <= 0.0 {
-                break;
-            }
-            let mut h = opts.step.min(opts.length - travelled);
-            let next = loop {
-                if h < 1e-9 * opts.step {
-                    break None;
-                }
-                match self.correct(uv + t * (h / speed), &mut cursor) {
-                    Some(found) => break Some(found),
-                    None => h *= 0.5,
-                }
-            };
-            let Some((p, next_uv)) = next else {
-                break;
-            };
-            travelled += (p - j.jet.value).norm();
-            previous = Some(t);
-            uv = next_uv;
-            out.push((p, uv));
-        }
-        out
-    }
-
-    /// Newton steps along ∇f from `uv` onto f = 0; None if they leave the domain or do not
-    /// converge.
-    fn correct(
-        &self,
-        mut uv: Point2<f64>,
-        cursor: &mut Cursor,
-    ) -> Option<(Vector3<f64>, Point2<f64>)> {
-        for _ in 0..12 {
-            let j = self.surface.jet_with(uv, cursor).ok()?.jet;
-            let f = (j.value - self.origin).dot(&self.m);
-            if f.abs() <= self.tolerance {
-                return Some((j.value, uv));
-            }
-            let g = Vector2::new(j.dx.dot(&self.m), j.dy.dot(&self.m));
-            let g2 = g.norm_squared();
-            if g2 == 0.0 || !g2.is_finite() {
-                return None;
-            }
-            uv -= g * (f / g2);
-        }
-        None
+    fn exits(&self, _: Point2<f64>, _: Point2<f64>) -> Vec<Exit> {
+        Vec::new()
     }
 }
 
@@ -279,6 +251,27 @@ mod tests {
                 "{kappa} vs {expected}"
             );
         }
+    }
+
+    #[test]
+    fn a_level_section_of_a_paraboloid_is_a_closed_circle() {
+        let s = paraboloid(5);
+        let uv = Point2::new(0.3, 0.2);
+        let opts = SectionOptions {
+            step: 0.01,
+            length: 100.0,
+        };
+        let c = plane_section(&s, uv, Vector3::z(), opts).unwrap();
+        assert!(c.closed);
+        assert_eq!(c.start, 0, "closed going forward: nothing traced backward");
+        let r = uv.coords.norm();
+        for q in &c.uvs {
+            assert!((q.coords.norm() - r).abs() < 1e-12);
+        }
+        // Once round: about 2πr/step points.
+        let n = c.uvs.len() as f64;
+        let expected = std::f64::consts::TAU * r / 0.01;
+        assert!((n - expected).abs() < 0.05 * expected, "{n} points");
     }
 
     #[test]
