@@ -774,7 +774,18 @@ fn trace_draws_lines_of_curvature_geodesics_and_the_probe_reports_closed_forms()
     let radius = planes[1]["osculating_circle"]["radius"].as_f64().unwrap();
     assert!((radius - 1.0 / v["k2"].as_f64().unwrap()).abs() < 1e-12);
     assert_eq!(v["coordinate_curves"]["u"]["torsion"].as_f64(), Some(0.0));
-    assert!(ok(&["probe", &surf, "--at", "0.3,0.2"]).contains("κ1 ="));
+    let sections = d.path().join("sections.csv");
+    assert!(ok(&["probe", &surf, "--at", "0.3,0.2", "-o", &s(&sections)]).contains("κ1 ="));
+    let two = read_curves(&sections);
+    assert_eq!(two.len(), 2);
+    for c in &two {
+        for p in &c.points {
+            assert!(
+                (p.z - 0.5 * (p.x * p.x + p.y * p.y)).abs() < 1e-12,
+                "on the bowl"
+            );
+        }
+    }
     // Bad input: one line, non-zero exit.
     for args in [
         vec!["trace", &surf, "--geodesic", "--to", "0,0"],

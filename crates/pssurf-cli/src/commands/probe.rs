@@ -5,7 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use nalgebra::{Point2, Vector3};
-use pssurf::interrogate::{Alignment, CoordinateCurve, CrossPlane, ProbeOptions, probe};
+use pssurf::interrogate::{
+    Alignment, CoordinateCurve, CrossPlane, ProbeOptions, SurfaceCurve, probe,
+};
 use pssurf::surface::ParametricSurface;
 use pssurf::text::Significant;
 use serde_json::{Value, json};
@@ -38,6 +40,10 @@ pub struct ProbeArgs {
     /// Write JSON (with the section polylines) instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Also write the two normal sections as a curves CSV (curve,u,v,x,y,z), for
+    /// `pssurf plot --lines`.
+    #[arg(short, long, value_name = "SECTIONS.csv")]
+    pub output: Option<PathBuf>,
 }
 
 /// Runs `pssurf probe`.
@@ -58,6 +64,20 @@ pub fn run(args: &ProbeArgs) -> Result<()> {
         step: extent / 200.0,
     };
     let p = probe(&surface, at, &opts)?;
+    if let Some(path) = &args.output {
+        let sections: Vec<SurfaceCurve> = p
+            .planes
+            .iter()
+            .map(|c| SurfaceCurve {
+                uvs: c.section.uvs.clone(),
+                points: c.section.points.clone(),
+                closed: c.section.closed,
+            })
+            .collect();
+        crate::output::write_output(path, pssurf::io::Durability::Atomic, |w| {
+            Ok(pssurf::io::write_curves_csv(w, &sections)?)
+        })?;
+    }
     if args.json {
         let v = |x: &Vector3<f64>| json!([x.x, x.y, x.z]);
         let plane = |c: &CrossPlane| {
