@@ -23,19 +23,9 @@ impl Table {
     /// are not read (they hold NaN). Duplicate column names and a header that is not
     /// comma-separated are errors.
     pub fn read_columns(path: &Path, used: Option<&[&str]>) -> Result<Table> {
-        if let Ok(meta) = std::fs::metadata(path)
-            && meta.is_file()
-        {
-            // A row of w cells takes at least 2w bytes of text and at most 40 + 8w bytes of
-            // memory: at most 24 bytes per byte of file.
-            crate::budget::Estimate {
-                what: format!("reading {}", path.display()),
-                makes: format!("a file of {}", crate::budget::Bytes(meta.len())),
-                memory: crate::budget::base_memory().saturating_add(meta.len().saturating_mul(24)),
-                output: 0,
-            }
-            .check()?;
-        }
+        // A row of w cells takes at least 2w bytes of text and at most 40 + 8w bytes of
+        // memory: at most 24 bytes per byte of file.
+        check_reading(path)?;
         let mut rdr = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
@@ -164,10 +154,9 @@ fn open_bounded(path: &Path) -> Result<Bounded<std::io::BufReader<std::fs::File>
     })
 }
 
-/// Reads a whole text file within the memory budget (a curves CSV becomes at most 24 bytes of
-/// memory per byte of text).
-pub fn read_text(path: &Path) -> Result<String> {
-    use std::io::Read;
+/// Checks that reading the text file at `path` fits the budget: at most 24 bytes of memory
+/// per byte of text.
+fn check_reading(path: &Path) -> Result<()> {
     if let Ok(meta) = std::fs::metadata(path)
         && meta.is_file()
     {
@@ -179,6 +168,14 @@ pub fn read_text(path: &Path) -> Result<String> {
         }
         .check()?;
     }
+    Ok(())
+}
+
+/// Reads a whole text file within the memory budget (a curves CSV becomes at most 24 bytes of
+/// memory per byte of text).
+pub fn read_text(path: &Path) -> Result<String> {
+    use std::io::Read;
+    check_reading(path)?;
     let mut text = String::new();
     open_bounded(path)?
         .read_to_string(&mut text)

@@ -17,6 +17,20 @@ use crate::triangulation::Triangulation;
 /// The graph of z = (a x² + b y²)/2 as a PS-spline on a random Delaunay mesh of [-1, 1]²
 /// (reproduced exactly, so K and H are the same quadratic's on every piece).
 pub(super) fn elliptic_paraboloid(a: f64, b: f64, seed: u64) -> Surface {
+    ps_graph_on_square(seed, 40, |p| Hermite {
+        value: 0.5 * (a * p.x * p.x + b * p.y * p.y),
+        dx: a * p.x,
+        dy: b * p.y,
+    })
+}
+
+/// The PS-spline interpolating `f` (value and gradient) on the corners of [-1, 1]² and `n`
+/// random points in it (Delaunay).
+pub(super) fn ps_graph_on_square(
+    seed: u64,
+    n: usize,
+    f: impl Fn(Point2<f64>) -> Hermite<f64>,
+) -> Surface {
     let mut r = rng(seed);
     let mut pts = vec![
         Point2::new(-1.0, -1.0),
@@ -24,18 +38,9 @@ pub(super) fn elliptic_paraboloid(a: f64, b: f64, seed: u64) -> Surface {
         Point2::new(1.0, 1.0),
         Point2::new(-1.0, 1.0),
     ];
-    pts.extend(
-        (0..40).map(|_| Point2::new(uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0))),
-    );
+    pts.extend((0..n).map(|_| Point2::new(uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0))));
     let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
-    Surface::Functional(
-        PsSpline::interpolate(basis, |p| Hermite {
-            value: 0.5 * (a * p.x * p.x + b * p.y * p.y),
-            dx: a * p.x,
-            dy: b * p.y,
-        })
-        .unwrap(),
-    )
+    Surface::Functional(PsSpline::interpolate(basis, f).unwrap())
 }
 
 /// K and H of z = (a x² + b y²)/2 by the classical graph formulas.

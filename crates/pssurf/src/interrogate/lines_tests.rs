@@ -2,18 +2,15 @@
 //! parallels and meridians of a paraboloid of revolution (apex an umbilic), the rulings of
 //! z = xy, great circles on a sphere; orientation and bounded work on wavy surfaces.
 
-use std::sync::Arc;
-
 use nalgebra::{Point2, Vector2, Vector3};
 
-use super::level_tests::elliptic_paraboloid;
-use super::tests::{sphere_patch, wavy_surface};
+use super::level_tests::{elliptic_paraboloid, ps_graph_on_square};
+use super::tests::{sphere_patch, wavy_surface, wavy_surface_on};
 use super::*;
 use crate::geometry::Triangle2;
-use crate::ps::{Hermite, PsBasis, PsSpline};
+use crate::ps::Hermite;
 use crate::surface::{ParametricSurface, PiecewiseSurface, Surface};
 use crate::test_util::*;
-use crate::triangulation::Triangulation;
 
 fn tight() -> FieldLineOptions {
     FieldLineOptions {
@@ -24,25 +21,11 @@ fn tight() -> FieldLineOptions {
 
 /// z = xy as a PS-spline on a random Delaunay mesh of [-1, 1]² (reproduced exactly).
 fn saddle(seed: u64) -> Surface {
-    let mut r = rng(seed);
-    let mut pts = vec![
-        Point2::new(-1.0, -1.0),
-        Point2::new(1.0, -1.0),
-        Point2::new(1.0, 1.0),
-        Point2::new(-1.0, 1.0),
-    ];
-    pts.extend(
-        (0..30).map(|_| Point2::new(uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0))),
-    );
-    let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
-    Surface::Functional(
-        PsSpline::interpolate(basis, |p| Hermite {
-            value: p.x * p.y,
-            dx: p.y,
-            dy: p.x,
-        })
-        .unwrap(),
-    )
+    ps_graph_on_square(seed, 30, |p| Hermite {
+        value: p.x * p.y,
+        dx: p.y,
+        dy: p.x,
+    })
 }
 
 #[test]
@@ -115,24 +98,9 @@ fn lines_of_curvature_of_a_paraboloid_of_revolution_are_parallels_and_meridians(
     }
 }
 
-/// sin(3x) cos(2y) interpolated by a PS-spline on `n` random points of the unit square.
-fn wavy(seed: u64, n: usize) -> Surface {
-    let mut r = rng(seed);
-    let tri = meshes::uniform_square(&mut r, n);
-    let basis = Arc::new(PsBasis::optimal(tri).unwrap());
-    Surface::Functional(
-        PsSpline::interpolate(basis, |p| Hermite {
-            value: (3.0 * p.x).sin() * (2.0 * p.y).cos(),
-            dx: 3.0 * (3.0 * p.x).cos() * (2.0 * p.y).cos(),
-            dy: -2.0 * (3.0 * p.x).sin() * (2.0 * p.y).sin(),
-        })
-        .unwrap(),
-    )
-}
-
 #[test]
 fn lines_of_curvature_keep_their_family_and_orientation_on_a_wavy_surface() {
-    let s = wavy(1502, 400);
+    let s = wavy_surface_on(1502, 400);
     let mut r = rng(1503);
     let (mut chords, mut skipped, mut ends, mut jumps) = (0usize, 0usize, 0usize, 0usize);
     for _ in 0..20 {

@@ -466,8 +466,13 @@ fn quantity_names_round_trip() {
 
 /// A PS surface interpolating a non-polynomial function on a small Delaunay mesh.
 pub(super) fn wavy_surface(seed: u64) -> Surface {
+    wavy_surface_on(seed, 30)
+}
+
+/// sin(3x) cos(2y) interpolated by a PS-spline on `n` random points of the unit square.
+pub(super) fn wavy_surface_on(seed: u64, n: usize) -> Surface {
     let mut r = rng(seed);
-    let tri = meshes::uniform_square(&mut r, 30);
+    let tri = meshes::uniform_square(&mut r, n);
     let basis = Arc::new(PsBasis::optimal(tri).unwrap());
     Surface::Functional(
         PsSpline::interpolate(basis, |p| Hermite {
