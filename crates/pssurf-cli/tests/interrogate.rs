@@ -416,6 +416,22 @@ fn every_kind(dir: &Path) -> Vec<(String, String)> {
         "rational_bezier".into(),
         s(&write(dir, "rational.json", &rational.to_string())),
     ));
+    // A biquadratic NURBS patch over [0, 1]²: control points by the blossom of each term,
+    // u² → (0, 0, 1), u → (0, ½, 1), uv → u-blossom × v-blossom.
+    let (u2, u1) = ([0.0, 0.0, 1.0], [0.0, 0.5, 1.0]);
+    let mut net = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            net.push([u1[i], u1[j], u2[i] - 0.7 * u1[i] * u1[j] + 0.5 * u2[j]]);
+        }
+    }
+    let nurbs = serde_json::json!({"format": "pssurf", "version": 1, "kind": "nurbs",
+        "nurbs": {"degree": [2, 2], "knots": [[0, 0, 0, 1, 1, 1], [0, 0, 0, 1, 1, 1]],
+                  "counts": [3, 3], "points": net, "weights": vec![0.5; 9]}});
+    files.push((
+        "nurbs".into(),
+        s(&write(dir, "nurbs.json", &nurbs.to_string())),
+    ));
     files
 }
 

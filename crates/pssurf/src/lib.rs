@@ -25,6 +25,7 @@ pub mod io;
 pub mod limits;
 pub mod mesh;
 pub mod noise;
+pub mod nurbs;
 pub mod ps;
 pub mod quadrature;
 pub mod scattered;

@@ -42,7 +42,7 @@ pub fn table(f: &Fairness) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "integrals over the surface (Gauss quadrature on every PS sub-triangle, {} nodes)",
+        "integrals over the surface (Gauss quadrature on every piece, {} nodes)",
         f.nodes
     );
     for (name, v) in [

@@ -9,6 +9,7 @@ use thiserror::Error;
 
 use crate::bezier::{BezierTriangle, RationalBezierTriangle};
 use crate::geometry::Triangle2;
+use crate::nurbs::NurbsSurface;
 use crate::ps::net::Weighted;
 use crate::ps::{Nurps, PsBasis, PsError, PsRefinement, PsSpline, PsTriangleChoice, SplitRule};
 use crate::surface::{Surface, UpsSurface};
@@ -85,6 +86,7 @@ enum Kind {
     Nurps,
     Bezier,
     RationalBezier,
+    Nurbs,
 }
 
 impl Kind {
@@ -95,6 +97,7 @@ impl Kind {
             Kind::Nurps => "nurps",
             Kind::Bezier => "bezier",
             Kind::RationalBezier => "rational_bezier",
+            Kind::Nurbs => "nurbs",
         }
     }
 }
@@ -132,6 +135,20 @@ struct BezierSection {
     weights: Option<Vec<f64>>,
 }
 
+/// A tensor-product NURBS surface: degrees [p, q], knot vectors [U, V], the net's size
+/// [n_u, n_v], the control points row by row (P_ij at i·n_v + j, i along u) and, for a
+/// rational surface, one weight per point.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NurbsSection {
+    degree: [usize; 2],
+    knots: [Vec<f64>; 2],
+    counts: [usize; 2],
+    points: Vec<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    weights: Option<Vec<f64>>,
+}
+
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileV1 {
@@ -152,6 +169,8 @@ struct FileV1 {
     uniform: Option<UniformSection>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     bezier: Option<BezierSection>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    nurbs: Option<NurbsSection>,
 }
 
 impl FileV1 {
@@ -168,11 +187,12 @@ impl FileV1 {
             weights: None,
             uniform: None,
             bezier: None,
+            nurbs: None,
         }
     }
 
     /// The fields present, by name, for the rule that a file holds only its kind's fields.
-    fn present_fields(&self) -> [(&'static str, bool); 7] {
+    fn present_fields(&self) -> [(&'static str, bool); 8] {
         [
             ("domain", self.domain.is_some()),
             ("ps_triangles", self.ps_triangles.is_some()),
@@ -181,6 +201,7 @@ impl FileV1 {
             ("weights", self.weights.is_some()),
             ("uniform", self.uniform.is_some()),
             ("bezier", self.bezier.is_some()),
+            ("nurbs", self.nurbs.is_some()),
         ]
     }
 }
@@ -231,6 +252,7 @@ fn build(file: FileV1) -> Result<Surface, FormatError> {
     check_fields(&file)?;
     match file.kind {
         Kind::Bezier | Kind::RationalBezier => build_bezier(&file),
+        Kind::Nurbs => build_nurbs(&file),
         _ => {
             let structure = match &file.uniform {
                 Some(u) => Structure::Uniform(read_uniform(u, &file)?),
@@ -252,6 +274,7 @@ fn check_fields(file: &FileV1) -> Result<(), FormatError> {
             &["ps_triangles", "uniform"],
         ),
         Kind::Bezier | Kind::RationalBezier => (&["bezier"], &[]),
+        Kind::Nurbs => (&["nurbs"], &[]),
     };
     for (field, present) in file.present_fields() {
         if present && !required.contains(&field) && !allowed.contains(&field) {
@@ -625,6 +648,48 @@ fn build_bezier(file: &FileV1) -> Result<Surface, FormatError> {
     })
 }
 
+/// A NURBS surface (validated by [`NurbsSurface::try_new`]; the size is checked first, so
+/// that a file cannot ask for more points than it holds).
+fn build_nurbs(file: &FileV1) -> Result<Surface, FormatError> {
+    let n = file.nurbs.as_ref().expect("checked by check_fields");
+    let expected = n.counts[0].checked_mul(n.counts[1]);
+    if expected != Some(n.points.len()) {
+        return Err(invalid(
+            "nurbs.points",
+            format!(
+                "{} points for a {} × {} net",
+                n.points.len(),
+                n.counts[0],
+                n.counts[1]
+            ),
+        ));
+    }
+    let points = n
+        .points
+        .iter()
+        .map(|p| Vector3::new(p[0], p[1], p[2]))
+        .collect();
+    NurbsSurface::try_new(
+        n.degree,
+        n.knots.clone(),
+        n.counts,
+        points,
+        n.weights.clone(),
+    )
+    .map(Surface::Nurbs)
+    .map_err(|e| {
+        use crate::nurbs::NurbsError as E;
+        let at = match &e {
+            E::Knots { direction, .. } => format!("nurbs.knots ({direction})"),
+            E::Count { what, .. } if *what == "weights" => "nurbs.weights".to_string(),
+            E::Count { .. } => "nurbs.points".to_string(),
+            E::Point(i) => format!("nurbs.points[{i}]"),
+            E::Weight(i, _) => format!("nurbs.weights[{i}]"),
+        };
+        invalid(at, e)
+    })
+}
+
 /// The highest Bézier degree a file may have (evaluation costs O(m³) per point).
 const MAX_BEZIER_DEGREE: usize = 30;
 
@@ -688,6 +753,7 @@ pub fn to_json_string(surface: &Surface) -> String {
         Surface::RationalBezier(b) => {
             bezier_file(b.domain(), b.degree(), b.points(), Some(b.weights()))
         }
+        Surface::Nurbs(n) => nurbs_file(n),
         general => general_file(general),
     };
     let mut text = serde_json::to_string(&file).expect("finite numbers serialise");
@@ -831,6 +897,19 @@ fn bezier_file(
         degree,
         points: points.iter().map(|p| [p.x, p.y, p.z]).collect(),
         weights: weights.map(<[f64]>::to_vec),
+    });
+    file
+}
+
+fn nurbs_file(n: &NurbsSurface) -> FileV1 {
+    let mut file = FileV1::new(Kind::Nurbs);
+    let [u, v] = n.knot_vectors();
+    file.nurbs = Some(NurbsSection {
+        degree: n.degree(),
+        knots: [u.knots().to_vec(), v.knots().to_vec()],
+        counts: n.counts(),
+        points: n.points().iter().map(|p| [p.x, p.y, p.z]).collect(),
+        weights: n.is_rational().then(|| n.weights().to_vec()),
     });
     file
 }

@@ -598,3 +598,89 @@ mod bezier {
         assert_eq!(at(&e), "bezier", "{e}");
     }
 }
+
+/// A rational bicubic NURBS surface with an interior knot in u and an unclamped v.
+fn nurbs_surface() -> Surface {
+    let mut r = rng(62);
+    let (nu, nv) = (5, 4);
+    let points = (0..nu * nv).map(|_| random_vec3(&mut r)).collect();
+    let weights = (0..nu * nv).map(|_| uniform(&mut r, 0.2, 5.0)).collect();
+    crate::nurbs::NurbsSurface::try_new(
+        [3, 2],
+        [
+            vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0],
+            vec![-1.0, -0.5, 0.0, 0.3, 0.7, 1.2, 2.0],
+        ],
+        [nu, nv],
+        points,
+        Some(weights),
+    )
+    .unwrap()
+    .into()
+}
+
+#[test]
+fn nurbs_surfaces_round_trip_and_bad_sections_are_named() {
+    let s = nurbs_surface();
+    let text = to_json_string(&s);
+    let back = from_json_str(&text).unwrap();
+    assert_eq!(back.kind(), s.kind());
+    assert_eq!(back.control_points(), s.control_points());
+    assert_eq!(to_json_string(&back), text);
+    let mut r = rng(63);
+    let (lo, hi) = s.domain_bounds();
+    for _ in 0..20 {
+        let p = Point2::new(uniform(&mut r, lo.x, hi.x), uniform(&mut r, lo.y, hi.y));
+        assert_eq!(back.jet(p).unwrap(), s.jet(p).unwrap());
+    }
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let with = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = v.clone();
+        f(&mut v);
+        err(&v.to_string())
+    };
+    let named = |e: FormatError, want: &str| {
+        assert!(
+            matches!(&e, FormatError::Invalid { at, .. } if at == want),
+            "{e} (expected at {want})"
+        );
+    };
+    named(
+        with(&|v| {
+            v["nurbs"]["points"].as_array_mut().unwrap().pop();
+        }),
+        "nurbs.points",
+    );
+    named(
+        with(&|v| v["nurbs"]["counts"] = serde_json::json!([1u64 << 40, 1u64 << 40])),
+        "nurbs.points",
+    );
+    named(
+        with(&|v| v["nurbs"]["knots"][0][5] = 0.1.into()),
+        "nurbs.knots (u)",
+    );
+    named(
+        with(&|v| v["nurbs"]["degree"][1] = 40.into()),
+        "nurbs.knots (v)",
+    );
+    named(
+        with(&|v| v["nurbs"]["weights"][3] = (-1.0).into()),
+        "nurbs.weights[3]",
+    );
+    named(
+        with(&|v| v["nurbs"]["points"][7][2] = 1e61.into()),
+        "nurbs.points[7]",
+    );
+    named(
+        with(&|v| {
+            v["nurbs"]["weights"].as_array_mut().unwrap().pop();
+        }),
+        "nurbs.weights",
+    );
+    // The section belongs to its kind only.
+    named(with(&|v| v["kind"] = "bezier".into()), "bezier");
+    let e = with(&|v| {
+        v.as_object_mut().unwrap().remove("nurbs");
+    });
+    named(e, "nurbs");
+}

@@ -26,6 +26,7 @@ mod tests;
 mod uniform;
 
 pub use crate::triangulation::Cursor;
+pub(crate) use control::check_point;
 pub use control::{ControlFreedom, ControlId, ControlNet, ControlPoint, EditError};
 pub use domain::{Domain, DomainError, SegmentPart};
 pub(crate) use eval::for_each_chunk;

@@ -13,6 +13,7 @@ use super::{
 };
 use crate::bezier::{BezierTriangle, Jet, RationalBezierTriangle};
 use crate::noise::{NoiseKind, perturb};
+use crate::nurbs::NurbsSurface;
 use crate::ps::{Nurps, PsBasis, PsSpline};
 
 /// A surface of any kind. Every variant implements [`ParametricSurface`],
@@ -33,6 +34,8 @@ pub enum Surface {
     Bezier(BezierTriangle<Vector3<f64>>),
     /// A rational triangular Bézier patch (3.1).
     RationalBezier(RationalBezierTriangle<Vector3<f64>>),
+    /// A tensor-product NURBS surface (rectangular pieces, one per knot rectangle).
+    Nurbs(NurbsSurface),
 }
 
 /// Runs `$body` with `$s` bound to the concrete surface of any variant. Adding a kind means
@@ -46,6 +49,7 @@ macro_rules! each_kind {
             Surface::Uniform($s) => $body,
             Surface::Bezier($s) => $body,
             Surface::RationalBezier($s) => $body,
+            Surface::Nurbs($s) => $body,
         }
     };
 }
@@ -69,6 +73,8 @@ pub enum SurfaceKind {
     Bezier,
     /// A rational Bézier triangle.
     RationalBezier,
+    /// A tensor-product NURBS surface.
+    Nurbs,
 }
 
 impl SurfaceKind {
@@ -82,6 +88,7 @@ impl SurfaceKind {
             SurfaceKind::Nurps | SurfaceKind::UniformRational => "nurps",
             SurfaceKind::Bezier => "bezier",
             SurfaceKind::RationalBezier => "rational_bezier",
+            SurfaceKind::Nurbs => "nurbs",
         }
     }
 
@@ -96,6 +103,7 @@ impl SurfaceKind {
             SurfaceKind::UniformRational => "rational UPS",
             SurfaceKind::Bezier => "Bézier triangle",
             SurfaceKind::RationalBezier => "rational Bézier triangle",
+            SurfaceKind::Nurbs => "NURBS surface",
         }
     }
 
@@ -111,7 +119,10 @@ impl SurfaceKind {
     pub fn is_rational(self) -> bool {
         matches!(
             self,
-            SurfaceKind::Nurps | SurfaceKind::UniformRational | SurfaceKind::RationalBezier
+            SurfaceKind::Nurps
+                | SurfaceKind::UniformRational
+                | SurfaceKind::RationalBezier
+                | SurfaceKind::Nurbs
         )
     }
 
@@ -146,6 +157,7 @@ impl Surface {
             },
             Surface::Bezier(_) => SurfaceKind::Bezier,
             Surface::RationalBezier(_) => SurfaceKind::RationalBezier,
+            Surface::Nurbs(_) => SurfaceKind::Nurbs,
         }
     }
 
@@ -157,7 +169,7 @@ impl Surface {
             Surface::Parametric(s) => Some(s.basis()),
             Surface::Nurps(s) => Some(s.basis()),
             Surface::Uniform(u) => u.general().ps_basis(),
-            Surface::Bezier(_) | Surface::RationalBezier(_) => None,
+            Surface::Bezier(_) | Surface::RationalBezier(_) | Surface::Nurbs(_) => None,
         }
     }
 
@@ -168,6 +180,8 @@ impl Surface {
         match self {
             Surface::Bezier(s) => s.degree(),
             Surface::RationalBezier(s) => s.degree(),
+            // A tensor piece of degrees (p, q) has total degree p + q.
+            Surface::Nurbs(s) => s.degree()[0] + s.degree()[1],
             _ => 2,
         }
     }
@@ -186,6 +200,10 @@ impl Surface {
         match self {
             Surface::Bezier(s) => Domain::triangle(s.domain()),
             Surface::RationalBezier(s) => Domain::triangle(s.domain()),
+            Surface::Nurbs(s) => {
+                let (lo, hi) = s.domain_bounds();
+                Domain::rectangle(&super::Rectangle::new(lo, hi))
+            }
             _ => Domain::from_triangulation(
                 self.ps_basis()
                     .expect("PS kinds have a basis")
@@ -291,7 +309,8 @@ from_kind!(
     Nurps(Nurps<Vector3<f64>>),
     Uniform(UniformSurface),
     Bezier(BezierTriangle<Vector3<f64>>),
-    RationalBezier(RationalBezierTriangle<Vector3<f64>>)
+    RationalBezier(RationalBezierTriangle<Vector3<f64>>),
+    Nurbs(NurbsSurface)
 );
 
 impl ParametricSurface for Surface {

@@ -119,7 +119,52 @@ fn every_kind(q: Quadric, r: &mut rand_chacha::ChaCha8Rng) -> Vec<Surface> {
         &bezier,
     )));
     kinds.push(Surface::from(bezier));
+    kinds.push(Surface::from(nurbs_graph(&q)));
     kinds
+}
+
+/// The graph of `q` over [0, 1]² as a rational biquadratic NURBS surface with an interior knot
+/// in each direction (2 × 2 pieces; all weights 2, so the surface is the polynomial one): the
+/// control points interpolate (u, v, q) at the Greville points, which reproduces quadratics.
+fn nurbs_graph(q: &Quadric) -> crate::nurbs::NurbsSurface {
+    use crate::nurbs::KnotVector;
+    let knots = vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0];
+    let kv = KnotVector::try_new(2, knots.clone(), 4).unwrap();
+    let greville = [0.0, 0.25, 0.75, 1.0];
+    // A[i][j] = N_j(g_i).
+    let a = nalgebra::DMatrix::from_fn(4, 4, |i, j| {
+        let t = greville[i];
+        let span = kv.spans()[kv.span_rank(t)];
+        let b = kv.basis(span, t);
+        // N_j is entry j − (span − 2) of the nonzero ones.
+        if j + 2 >= span && j <= span {
+            b.d[0][j + 2 - span]
+        } else {
+            0.0
+        }
+    });
+    let inv = a.clone().try_inverse().unwrap();
+    let mut points = vec![Vector3::zeros(); 16];
+    for c in 0..3 {
+        let f = nalgebra::DMatrix::from_fn(4, 4, |i, j| {
+            let p = Point2::new(greville[i], greville[j]);
+            [p.x, p.y, q.value(p)][c]
+        });
+        let coef = &inv * f * inv.transpose();
+        for i in 0..4 {
+            for j in 0..4 {
+                points[i * 4 + j][c] = coef[(i, j)];
+            }
+        }
+    }
+    crate::nurbs::NurbsSurface::try_new(
+        [2, 2],
+        [knots.clone(), knots],
+        [4, 4],
+        points,
+        Some(vec![2.0; 16]),
+    )
+    .unwrap()
 }
 
 #[test]
@@ -130,7 +175,7 @@ fn every_kind_samples_with_the_closed_form_curvature_through_the_enum() {
         let kinds = every_kind(q, &mut r);
         let names: std::collections::HashSet<SurfaceKind> =
             kinds.iter().map(Surface::kind).collect();
-        assert_eq!(names.len(), 8, "one surface of every kind");
+        assert_eq!(names.len(), 9, "one surface of every kind");
         for s in &kinds {
             graph_of_quadric_through_the_enum(s, q);
         }
@@ -154,7 +199,7 @@ fn graph_of_quadric_through_the_enum(s: &Surface, q: Quadric) {
     let sampled = sample_patches(s, 1, true);
     assert_eq!(
         sampled.mesh.positions.len(),
-        s.piece_count() * 6,
+        s.piece_count() * crate::interrogate::vertices_per_piece(s.piece_kind(), 1),
         "{}",
         s.kind()
     );
@@ -216,7 +261,7 @@ fn control_net_edits_of_every_kind_change_only_their_support() {
     for mut s in every_kind(q, &mut r) {
         // Build any cached general form first, so the edit must keep it in step.
         let before = sample_patches(&s, 1, false);
-        let per = 6;
+        let per = crate::interrogate::vertices_per_piece(s.piece_kind(), 1);
         let count = s.control_count();
         let id = ControlId(count / 2);
         let group = s.control_group(id);
@@ -293,7 +338,7 @@ fn bad_control_points_are_refused_and_leave_the_surface_unchanged() {
 }
 
 #[test]
-fn control_anchors_are_vertices_and_bezier_points() {
+fn control_anchors_are_vertices_bezier_points_and_greville_points() {
     let mut r = rng(1104);
     let q = Quadric([0.2, 0.1, -0.3, 0.0, 0.5]);
     for s in every_kind(q, &mut r) {
@@ -303,6 +348,12 @@ fn control_anchors_are_vertices_and_bezier_points() {
             Some(b) => {
                 assert_eq!(a, b.triangulation().vertex(4 / 3));
                 assert!(b.triangulation().molecule(1).len() * 6 == s.support(id).len());
+            }
+            // NURBS: the Greville point of P_10 (n_v = 4): ((0 + 0.5)/2, (0 + 0)/2).
+            None if matches!(s, Surface::Nurbs(_)) => {
+                assert_eq!(a, Point2::new(0.25, 0.0));
+                // N_1 on u-spans 1..=3 (two pieces) × N_0 on the first v-span.
+                assert_eq!(s.support(id), vec![0, 2]);
             }
             // Ordinate 4 of a quadratic is b011: the midpoint of the edge V2 V3.
             None => {

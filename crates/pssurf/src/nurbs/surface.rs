@@ -1,0 +1,383 @@
+//! Tensor-product NURBS surfaces s(u, v) = Σ N_{i,p}(u) N_{j,q}(v) w_ij P_ij / Σ N N w, with
+//! exact first and second derivatives, as a surface kind of the library: one rectangular
+//! piece per non-empty knot rectangle (the Bézier extraction without building the Bézier
+//! nets: each piece is evaluated on its own span, and extends beyond it as its polynomial).
+//!
+//! Derivatives of the homogeneous surface A = Σ N N (wP, w) are contracted in v first, then
+//! in u; the rational derivatives follow from S = A/w by Leibniz's rule (*The NURBS Book*,
+//! eq. 4.20): S_u = (A_u − w_u S)/w, S_uu = (A_uu − 2 w_u S_u − w_uu S)/w,
+//! S_uv = (A_uv − w_u S_v − w_v S_u − w_uv S)/w.
+
+use nalgebra::{Point2, Vector3};
+use thiserror::Error;
+
+use super::basis::{KnotError, KnotVector, MAX_DEGREE};
+use crate::bezier::Jet;
+use crate::surface::{
+    ControlFreedom, ControlId, ControlNet, ControlPoint, Cursor, EditError, OutsideDomain,
+    ParametricSurface, PieceKind, PiecePoint, PieceShape, PiecewiseSurface, Rectangle, SurfaceJet,
+};
+
+/// Why a NURBS surface is refused.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum NurbsError {
+    /// A knot vector is invalid.
+    #[error("{direction} knots: {source}")]
+    Knots {
+        /// "u" or "v".
+        direction: &'static str,
+        /// What is wrong.
+        source: KnotError,
+    },
+    /// The number of control points (or weights) is not n_u × n_v.
+    #[error("{found} {what} for a {nu} × {nv} net")]
+    Count {
+        /// "control points" or "weights".
+        what: &'static str,
+        /// The number given.
+        found: usize,
+        /// n_u.
+        nu: usize,
+        /// n_v.
+        nv: usize,
+    },
+    /// A control point is not finite (or beyond ±1e60).
+    #[error("control point {0} must have finite coordinates within ±1e60")]
+    Point(usize),
+    /// A weight is not finite and positive.
+    #[error("weight {0} is {1}; weights must lie between 1e-30 and 1e30")]
+    Weight(usize, f64),
+}
+
+/// A tensor-product NURBS surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsSurface {
+    knots: [KnotVector; 2],
+    points: Vec<Vector3<f64>>,
+    weights: Vec<f64>,
+    rational: bool,
+    /// (w x, w y, w z, w) per control point.
+    homogeneous: Vec<[f64; 4]>,
+}
+
+impl NurbsSurface {
+    /// A NURBS surface of degrees `degree` = [p, q] with knot vectors `knots` = [U, V] and an
+    /// n_u × n_v control net given row by row (`points[i·n_v + j]` = P_ij, i along u), with
+    /// `weights` in the same order (`None`: a polynomial B-spline surface, weights 1).
+    pub fn try_new(
+        degree: [usize; 2],
+        knots: [Vec<f64>; 2],
+        counts: [usize; 2],
+        points: Vec<Vector3<f64>>,
+        weights: Option<Vec<f64>>,
+    ) -> Result<Self, NurbsError> {
+        let [ku, kv] = knots;
+        let u =
+            KnotVector::try_new(degree[0], ku, counts[0]).map_err(|source| NurbsError::Knots {
+                direction: "u",
+                source,
+            })?;
+        let v =
+            KnotVector::try_new(degree[1], kv, counts[1]).map_err(|source| NurbsError::Knots {
+                direction: "v",
+                source,
+            })?;
+        let n = counts[0] * counts[1];
+        let count_error = |what, found| NurbsError::Count {
+            what,
+            found,
+            nu: counts[0],
+            nv: counts[1],
+        };
+        if points.len() != n {
+            return Err(count_error("control points", points.len()));
+        }
+        if let Some(i) = points
+            .iter()
+            .position(|p| !p.iter().all(|&x| crate::limits::value_ok(x)))
+        {
+            return Err(NurbsError::Point(i));
+        }
+        let rational = weights.is_some();
+        let weights = weights.unwrap_or_else(|| vec![1.0; n]);
+        if weights.len() != n {
+            return Err(count_error("weights", weights.len()));
+        }
+        if let Some(i) = weights.iter().position(|&w| !crate::limits::weight_ok(w)) {
+            return Err(NurbsError::Weight(i, weights[i]));
+        }
+        let homogeneous = homogeneous(&points, &weights);
+        Ok(NurbsSurface {
+            knots: [u, v],
+            points,
+            weights,
+            rational,
+            homogeneous,
+        })
+    }
+
+    /// The degrees [p, q].
+    pub fn degree(&self) -> [usize; 2] {
+        [self.knots[0].degree(), self.knots[1].degree()]
+    }
+
+    /// The knot vectors [U, V].
+    pub fn knot_vectors(&self) -> &[KnotVector; 2] {
+        &self.knots
+    }
+
+    /// The net's size [n_u, n_v].
+    pub fn counts(&self) -> [usize; 2] {
+        [self.knots[0].count(), self.knots[1].count()]
+    }
+
+    /// The control points, row by row (P_ij at i·n_v + j).
+    pub fn points(&self) -> &[Vector3<f64>] {
+        &self.points
+    }
+
+    /// The weights, in the order of the points.
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// Whether the surface was given weights (a rational surface).
+    pub fn is_rational(&self) -> bool {
+        self.rational
+    }
+
+    /// The jet of the piece on knot spans (`iu`, `iv`) at `uv` (the span's polynomial, also
+    /// beyond the span).
+    #[inline]
+    pub fn jet_on(&self, iu: usize, iv: usize, uv: Point2<f64>) -> Jet<Vector3<f64>> {
+        // The common degrees with constant loop bounds; the others with arrays of 8 or 16.
+        match self.degree() {
+            [3, 3] => self.jet_n::<4, 4>([3, 3], iu, iv, uv),
+            [2, 2] => self.jet_n::<3, 3>([2, 2], iu, iv, uv),
+            [1, 1] => self.jet_n::<2, 2>([1, 1], iu, iv, uv),
+            [2, 1] => self.jet_n::<3, 2>([2, 1], iu, iv, uv),
+            [1, 2] => self.jet_n::<2, 3>([1, 2], iu, iv, uv),
+            [3, 1] => self.jet_n::<4, 2>([3, 1], iu, iv, uv),
+            [1, 3] => self.jet_n::<2, 4>([1, 3], iu, iv, uv),
+            d if d[0].max(d[1]) < 8 => self.jet_n::<8, 8>(d, iu, iv, uv),
+            d => self.jet_n::<{ MAX_DEGREE + 1 }, { MAX_DEGREE + 1 }>(d, iu, iv, uv),
+        }
+    }
+
+    /// [`NurbsSurface::jet_on`] for degrees `degree` = [p, q] with basis arrays of `NU` > p
+    /// and `NV` > q entries.
+    #[inline(always)]
+    fn jet_n<const NU: usize, const NV: usize>(
+        &self,
+        degree: [usize; 2],
+        iu: usize,
+        iv: usize,
+        uv: Point2<f64>,
+    ) -> Jet<Vector3<f64>> {
+        let [p, q] = degree;
+        let nv = self.knots[1].count();
+        let bu = self.knots[0].basis_of_degree::<NU>(p, iu, uv.x);
+        let bv = self.knots[1].basis_of_degree::<NV>(q, iv, uv.y);
+        // a[k] for (u, v) derivative orders (0,0), (1,0), (0,1), (2,0), (1,1), (0,2).
+        let mut a = [[0.0f64; 4]; 6];
+        for r in 0..=p {
+            let row = (iu - p + r) * nv + iv - q;
+            let net = &self.homogeneous[row..=row + q];
+            let mut c = [[0.0f64; 4]; 3];
+            for (s, h) in net.iter().enumerate() {
+                let (n0, n1, n2) = (bv[0][s], bv[1][s], bv[2][s]);
+                for k in 0..4 {
+                    c[0][k] += n0 * h[k];
+                    c[1][k] += n1 * h[k];
+                    c[2][k] += n2 * h[k];
+                }
+            }
+            let (m0, m1, m2) = (bu[0][r], bu[1][r], bu[2][r]);
+            for k in 0..4 {
+                a[0][k] += m0 * c[0][k];
+                a[1][k] += m1 * c[0][k];
+                a[2][k] += m0 * c[1][k];
+                a[3][k] += m2 * c[0][k];
+                a[4][k] += m1 * c[1][k];
+                a[5][k] += m0 * c[2][k];
+            }
+        }
+        rational_jet(&a)
+    }
+
+    /// The spans (i, j) of piece `k`.
+    fn piece_spans(&self, k: usize) -> (usize, usize) {
+        let sv = self.knots[1].spans();
+        (self.knots[0].spans()[k / sv.len()], sv[k % sv.len()])
+    }
+
+    /// The rectangle of piece `k`.
+    fn rectangle(&self, k: usize) -> Rectangle {
+        let (i, j) = self.piece_spans(k);
+        let (u, v) = (self.knots[0].knots(), self.knots[1].knots());
+        Rectangle::new(Point2::new(u[i], v[j]), Point2::new(u[i + 1], v[j + 1]))
+    }
+
+    /// The pieces under basis function (i, j): spans i..=i+p by j..=j+q.
+    fn support_of(&self, i: usize, j: usize) -> Vec<usize> {
+        let [p, q] = self.degree();
+        let (su, sv) = (self.knots[0].spans(), self.knots[1].spans());
+        let mut out = Vec::new();
+        for (ru, &a) in su.iter().enumerate() {
+            if a < i || a > i + p {
+                continue;
+            }
+            for (rv, &b) in sv.iter().enumerate() {
+                if b >= j && b <= j + q {
+                    out.push(ru * sv.len() + rv);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// (w x, w y, w z, w) of each control point.
+fn homogeneous(points: &[Vector3<f64>], weights: &[f64]) -> Vec<[f64; 4]> {
+    points
+        .iter()
+        .zip(weights)
+        .map(|(p, &w)| [w * p.x, w * p.y, w * p.z, w])
+        .collect()
+}
+
+/// The jet of S = A/w from the homogeneous derivatives (Leibniz's rule).
+#[inline]
+fn rational_jet(a: &[[f64; 4]; 6]) -> Jet<Vector3<f64>> {
+    let xyz = |k: usize| Vector3::new(a[k][0], a[k][1], a[k][2]);
+    let w = a[0][3];
+    let inv = 1.0 / w;
+    let (wu, wv, wuu, wuv, wvv) = (a[1][3], a[2][3], a[3][3], a[4][3], a[5][3]);
+    let s = xyz(0) * inv;
+    let su = (xyz(1) - s * wu) * inv;
+    let sv = (xyz(2) - s * wv) * inv;
+    let suu = (xyz(3) - su * (2.0 * wu) - s * wuu) * inv;
+    let suv = (xyz(4) - su * wv - sv * wu - s * wuv) * inv;
+    let svv = (xyz(5) - sv * (2.0 * wv) - s * wvv) * inv;
+    Jet {
+        value: s,
+        dx: su,
+        dy: sv,
+        dxx: suu,
+        dxy: suv,
+        dyy: svv,
+    }
+}
+
+impl ParametricSurface for NurbsSurface {
+    fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
+        let ((u0, u1), (v0, v1)) = (self.knots[0].domain(), self.knots[1].domain());
+        (Point2::new(u0, v0), Point2::new(u1, v1))
+    }
+
+    #[inline]
+    fn jet_with(&self, uv: Point2<f64>, _: &mut Cursor) -> Result<SurfaceJet, OutsideDomain> {
+        let (lo, hi) = self.domain_bounds();
+        if !(uv.x >= lo.x && uv.x <= hi.x && uv.y >= lo.y && uv.y <= hi.y) {
+            return Err(OutsideDomain::at(uv));
+        }
+        let (ru, rv) = (self.knots[0].span_rank(uv.x), self.knots[1].span_rank(uv.y));
+        let (iu, iv) = (self.knots[0].spans()[ru], self.knots[1].spans()[rv]);
+        Ok(SurfaceJet {
+            jet: self.jet_on(iu, iv, uv),
+            piece: ru * self.knots[1].spans().len() + rv,
+        })
+    }
+}
+
+impl PiecewiseSurface for NurbsSurface {
+    fn piece_count(&self) -> usize {
+        self.knots[0].spans().len() * self.knots[1].spans().len()
+    }
+
+    fn piece_kind(&self) -> PieceKind {
+        PieceKind::Rectangle
+    }
+
+    fn piece_shape(&self, k: usize) -> PieceShape {
+        PieceShape::Rectangle(self.rectangle(k))
+    }
+
+    #[inline]
+    fn piece_jet(&self, k: usize, at: &PiecePoint) -> Jet<Vector3<f64>> {
+        let (iu, iv) = self.piece_spans(k);
+        self.jet_on(iu, iv, at.uv)
+    }
+}
+
+impl ControlNet for NurbsSurface {
+    fn control_count(&self) -> usize {
+        self.points.len()
+    }
+
+    fn control_point(&self, id: ControlId) -> Option<ControlPoint> {
+        Some(ControlPoint {
+            position: *self.points.get(id.0)?,
+            weight: self.weights[id.0],
+        })
+    }
+
+    fn is_rational(&self) -> bool {
+        self.rational
+    }
+
+    fn freedom(&self) -> ControlFreedom {
+        ControlFreedom::Full
+    }
+
+    fn control_group(&self, id: ControlId) -> std::ops::Range<usize> {
+        id.0..id.0 + 1
+    }
+
+    /// The Greville abscissae (U_{i+1} + … + U_{i+p})/p, (V_{j+1} + … + V_{j+q})/q.
+    fn control_anchor(&self, id: ControlId) -> Point2<f64> {
+        let nv = self.knots[1].count();
+        let greville = |kv: &KnotVector, i: usize| {
+            let p = kv.degree();
+            kv.knots()[i + 1..=i + p].iter().sum::<f64>() / p as f64
+        };
+        Point2::new(
+            greville(&self.knots[0], id.0 / nv),
+            greville(&self.knots[1], id.0 % nv),
+        )
+    }
+
+    fn support(&self, id: ControlId) -> Vec<usize> {
+        let nv = self.knots[1].count();
+        self.support_of(id.0 / nv, id.0 % nv)
+    }
+
+    /// The net's rows and columns.
+    fn control_polylines(&self) -> Vec<Vec<ControlId>> {
+        let [nu, nv] = self.counts();
+        let rows = (0..nu).map(|i| (0..nv).map(|j| ControlId(i * nv + j)).collect());
+        let columns = (0..nv).map(|j| (0..nu).map(|i| ControlId(i * nv + j)).collect());
+        rows.chain(columns).collect()
+    }
+
+    fn set_control_points(
+        &mut self,
+        changes: &[(ControlId, ControlPoint)],
+    ) -> Result<Vec<usize>, EditError> {
+        let count = self.control_count();
+        for (id, p) in changes {
+            crate::surface::check_point(*id, p, count, self.rational)?;
+        }
+        let mut pieces = Vec::new();
+        for (id, p) in changes {
+            self.points[id.0] = p.position;
+            self.weights[id.0] = p.weight;
+            let w = p.weight;
+            self.homogeneous[id.0] = [w * p.position.x, w * p.position.y, w * p.position.z, w];
+            pieces.extend(self.support(*id));
+        }
+        pieces.sort_unstable();
+        pieces.dedup();
+        Ok(pieces)
+    }
+}

@@ -1,0 +1,370 @@
+//! The NURBS evaluator against the recursive Cox–de Boor definition (an independent
+//! implementation written here), on random rational surfaces with weights from 1e-3 to 1e3,
+//! repeated knots and clamped or unclamped ends; exact curvature of a NURBS cylinder.
+
+use nalgebra::{Point2, Vector3};
+use rand::RngExt;
+
+use super::*;
+use crate::interrogate::Curvature;
+use crate::surface::{ParametricSurface, PiecewiseSurface};
+use crate::test_util::*;
+
+/// N_{i,p}(t) by the recursion (half-open spans; at the domain's end the last non-empty span
+/// is closed), with 0/0 = 0.
+fn cox_de_boor(u: &[f64], i: usize, p: usize, t: f64, end: (usize, f64)) -> f64 {
+    if p == 0 {
+        // The domain's end belongs to the last non-empty span (only).
+        if t == end.1 {
+            return if i == end.0 { 1.0 } else { 0.0 };
+        }
+        return if u[i] <= t && t < u[i + 1] { 1.0 } else { 0.0 };
+    }
+    let a = |num: f64, den: f64| if den == 0.0 { 0.0 } else { num / den };
+    a(t - u[i], u[i + p] - u[i]) * cox_de_boor(u, i, p - 1, t, end)
+        + a(u[i + p + 1] - t, u[i + p + 1] - u[i + 1]) * cox_de_boor(u, i + 1, p - 1, t, end)
+}
+
+/// The k-th derivative of N_{i,p} by recursion on the degree (eq. 2.9 of The NURBS Book).
+fn cox_de_boor_d(u: &[f64], i: usize, p: usize, k: usize, t: f64, end: (usize, f64)) -> f64 {
+    if k == 0 {
+        return cox_de_boor(u, i, p, t, end);
+    }
+    if p == 0 {
+        return 0.0;
+    }
+    let a = |den: f64| if den == 0.0 { 0.0 } else { p as f64 / den };
+    a(u[i + p] - u[i]) * cox_de_boor_d(u, i, p - 1, k - 1, t, end)
+        - a(u[i + p + 1] - u[i + 1]) * cox_de_boor_d(u, i + 1, p - 1, k - 1, t, end)
+}
+
+/// A random valid knot vector: clamped or not, with repeated interior knots.
+fn random_knots(r: &mut rand_chacha::ChaCha8Rng, p: usize, n: usize) -> Vec<f64> {
+    loop {
+        let clamped = r.random_bool(0.5);
+        let mut k: Vec<f64> = Vec::new();
+        let mut t = uniform(r, -2.0, 2.0);
+        while k.len() < n + p + 1 {
+            let times = if clamped && k.is_empty() {
+                p + 1
+            } else {
+                // Interior multiplicity up to p.
+                1 + (r.random_range(0..4usize) == 0) as usize * r.random_range(0..p)
+            };
+            for _ in 0..times.min(n + p + 1 - k.len()) {
+                k.push(t);
+            }
+            t += uniform(r, 0.1, 1.0);
+        }
+        if clamped {
+            let last = k[n];
+            for x in &mut k[n..] {
+                *x = last;
+            }
+        }
+        if KnotVector::try_new(p, k.clone(), n).is_ok() {
+            return k;
+        }
+    }
+}
+
+struct Case {
+    s: NurbsSurface,
+}
+
+fn random_surface(r: &mut rand_chacha::ChaCha8Rng) -> Case {
+    let degree = [r.random_range(1..=5usize), r.random_range(1..=5usize)];
+    let counts = [
+        degree[0] + 1 + r.random_range(0..6usize),
+        degree[1] + 1 + r.random_range(0..6usize),
+    ];
+    let knots = [
+        random_knots(r, degree[0], counts[0]),
+        random_knots(r, degree[1], counts[1]),
+    ];
+    let n = counts[0] * counts[1];
+    let points = (0..n).map(|_| random_vec3(r)).collect();
+    let weights = (0..n).map(|_| 10f64.powf(uniform(r, -3.0, 3.0))).collect();
+    Case {
+        s: NurbsSurface::try_new(degree, knots, counts, points, Some(weights)).unwrap(),
+    }
+}
+
+/// The jet by the oracle: S = A/w with A, w from recursive basis functions.
+fn oracle_jet(s: &NurbsSurface, uv: Point2<f64>) -> [Vector3<f64>; 6] {
+    let [kv_u, kv_v] = s.knot_vector_refs();
+    let end = |kv: &KnotVector| (*kv.spans().last().unwrap(), kv.domain().1);
+    let (eu, ev) = (end(kv_u), end(kv_v));
+    let [nu, nv] = s.counts();
+    let [p, q] = s.degree();
+    let orders = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+    let mut a = [Vector3::zeros(); 6];
+    let mut w = [0.0; 6];
+    for i in 0..nu {
+        for j in 0..nv {
+            let (pt, wt) = (s.points()[i * nv + j], s.weights()[i * nv + j]);
+            for (k, (du, dv)) in orders.iter().enumerate() {
+                let b = cox_de_boor_d(kv_u.knots(), i, p, *du, uv.x, eu)
+                    * cox_de_boor_d(kv_v.knots(), j, q, *dv, uv.y, ev);
+                a[k] += pt * (b * wt);
+                w[k] += b * wt;
+            }
+        }
+    }
+    let s0 = a[0] / w[0];
+    let su = (a[1] - s0 * w[1]) / w[0];
+    let sv = (a[2] - s0 * w[2]) / w[0];
+    let suu = (a[3] - su * 2.0 * w[1] - s0 * w[3]) / w[0];
+    let suv = (a[4] - su * w[2] - sv * w[1] - s0 * w[4]) / w[0];
+    let svv = (a[5] - sv * 2.0 * w[2] - s0 * w[5]) / w[0];
+    [s0, su, sv, suu, suv, svv]
+}
+
+impl NurbsSurface {
+    fn knot_vector_refs(&self) -> [&KnotVector; 2] {
+        let k = self.knot_vectors();
+        [&k[0], &k[1]]
+    }
+}
+
+#[test]
+fn evaluation_and_derivatives_match_the_recursive_definition() {
+    let mut r = rng(1701);
+    let (mut worst, mut points) = (0.0f64, 0);
+    for _ in 0..60 {
+        let case = random_surface(&mut r);
+        let s = &case.s;
+        let (lo, hi) = s.domain_bounds();
+        // Random parameters, and the knots themselves (span ends), domain ends included.
+        let mut uvs: Vec<Point2<f64>> = (0..20)
+            .map(|_| Point2::new(uniform(&mut r, lo.x, hi.x), uniform(&mut r, lo.y, hi.y)))
+            .collect();
+        let ku = s.knot_vectors()[0].knots().to_vec();
+        let kv = s.knot_vectors()[1].knots().to_vec();
+        for (a, b) in ku.iter().zip(kv.iter().rev()) {
+            uvs.push(Point2::new(a.clamp(lo.x, hi.x), b.clamp(lo.y, hi.y)));
+        }
+        for uv in uvs {
+            let j = s.jet(uv).unwrap().jet;
+            let ours = [j.value, j.dx, j.dy, j.dxx, j.dxy, j.dyy];
+            let oracle = oracle_jet(s, uv);
+            for (k, (a, b)) in ours.iter().zip(&oracle).enumerate() {
+                // Relative to the size of the quantity (and to 1 for small ones).
+                let e = (a - b).norm() / b.norm().max(1.0);
+                worst = worst.max(e);
+                assert!(e < 1e-12, "order {k} at {uv}: {a} vs {b} ({e:e})");
+            }
+            points += 1;
+        }
+    }
+    eprintln!("{points} points, worst relative error {worst:e}");
+}
+
+#[test]
+fn pieces_are_the_knot_rectangles_and_extend_as_their_polynomials() {
+    let mut r = rng(1702);
+    for _ in 0..20 {
+        let s = random_surface(&mut r).s;
+        let spans = s.knot_vector_refs().map(|k| k.spans().len());
+        assert_eq!(s.piece_count(), spans[0] * spans[1]);
+        let mut area = 0.0;
+        for k in 0..s.piece_count() {
+            let shape = s.piece_shape(k);
+            area += shape.area();
+            let frame = shape.frame().unwrap();
+            // The piece's jet at its centre is the surface's there, from the same piece.
+            let c = shape.corners();
+            let mid = Point2::from((c[0].coords + c[2].coords) * 0.5);
+            let sj = s.jet(mid).unwrap();
+            assert_eq!(sj.piece, k);
+            assert_eq!(s.piece_jet(k, &frame.at_uv(mid)), sj.jet);
+        }
+        let (lo, hi) = s.domain_bounds();
+        assert_near!(area, (hi.x - lo.x) * (hi.y - lo.y), 1e-12);
+        // Outside the domain: an error, not an extrapolation.
+        assert!(s.jet(Point2::new(hi.x + 1e-9, lo.y)).is_err());
+        assert!(s.jet(Point2::new(f64::NAN, lo.y)).is_err());
+    }
+}
+
+/// A NURBS cylinder of radius `rad` and height 2: the 9-point rational quadratic circle
+/// (weights √2/2 at the corners) extruded linearly.
+fn cylinder(rad: f64) -> NurbsSurface {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let circle = [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, h),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, h),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, h),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, h),
+        (1.0, 0.0, 1.0),
+    ];
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for (x, y, w) in circle {
+        for z in [-1.0, 1.0] {
+            points.push(Vector3::new(rad * x, rad * y, z));
+            weights.push(w);
+        }
+    }
+    let knots_u = vec![
+        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+    ];
+    NurbsSurface::try_new(
+        [2, 1],
+        [knots_u, vec![0.0, 0.0, 1.0, 1.0]],
+        [9, 2],
+        points,
+        Some(weights),
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_nurbs_cylinder_has_the_exact_curvature() {
+    let mut r = rng(1703);
+    for _ in 0..5 {
+        let rad = uniform(&mut r, 0.1, 10.0);
+        let s = cylinder(rad);
+        for _ in 0..50 {
+            let uv = Point2::new(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0));
+            let j = s.jet(uv).unwrap().jet;
+            assert_near!(j.value.xy().norm(), rad, 1e-14);
+            let c = Curvature::from_jet(&j).unwrap();
+            assert!(c.gaussian.abs() < 1e-12 / (rad * rad), "K = {}", c.gaussian);
+            assert_near!(c.mean.abs(), 0.5 / rad, 1e-12);
+        }
+    }
+}
+
+#[test]
+fn invalid_input_is_refused_with_the_reason() {
+    let p = vec![Vector3::zeros(); 4];
+    let k = || [vec![0.0, 0.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]];
+    let ok = NurbsSurface::try_new([1, 1], k(), [2, 2], p.clone(), None);
+    assert!(ok.is_ok());
+    let cases: Vec<(Result<NurbsSurface, NurbsError>, &str)> = vec![
+        (
+            NurbsSurface::try_new([0, 1], k(), [2, 2], p.clone(), None),
+            "degree 0",
+        ),
+        (
+            NurbsSurface::try_new(
+                [1, 1],
+                [vec![0.0, 1.0, 1.0, 0.5], k()[1].clone()],
+                [2, 2],
+                p.clone(),
+                None,
+            ),
+            "smaller than the knot before",
+        ),
+        (
+            NurbsSurface::try_new(
+                [1, 1],
+                [vec![0.0, 0.0, 1.0], k()[1].clone()],
+                [2, 2],
+                p.clone(),
+                None,
+            ),
+            "3 knots",
+        ),
+        (
+            NurbsSurface::try_new(
+                [1, 1],
+                [vec![0.0, 0.0, 0.0, 0.0], k()[1].clone()],
+                [2, 2],
+                p.clone(),
+                None,
+            ),
+            "is empty",
+        ),
+        (
+            NurbsSurface::try_new(
+                [1, 1],
+                [vec![0.0, f64::NAN, 1.0, 1.0], k()[1].clone()],
+                [2, 2],
+                p.clone(),
+                None,
+            ),
+            "not a finite",
+        ),
+        (
+            NurbsSurface::try_new([1, 1], k(), [2, 2], p[..3].to_vec(), None),
+            "3 control points",
+        ),
+        (
+            NurbsSurface::try_new(
+                [1, 1],
+                k(),
+                [2, 2],
+                p.clone(),
+                Some(vec![1.0, 1.0, -1.0, 1.0]),
+            ),
+            "weight 2",
+        ),
+        (
+            NurbsSurface::try_new(
+                [1, 1],
+                k(),
+                [2, 2],
+                vec![Vector3::new(f64::INFINITY, 0.0, 0.0); 4],
+                None,
+            ),
+            "control point 0",
+        ),
+        (
+            NurbsSurface::try_new(
+                [1, 1],
+                [vec![0.0, 0.0, 0.5, 0.5, 1.0, 1.0], k()[1].clone()],
+                [4, 2],
+                vec![Vector3::zeros(); 8],
+                None,
+            ),
+            "repeated 2 times",
+        ),
+    ];
+    for (result, expected) in cases {
+        let e = result.unwrap_err().to_string();
+        assert!(e.contains(expected), "{e} (expected “{expected}”)");
+    }
+}
+
+#[test]
+fn curves_match_the_recursive_definition() {
+    let mut r = rng(1704);
+    for _ in 0..40 {
+        let p = r.random_range(1..=6usize);
+        let n = p + 1 + r.random_range(0..8usize);
+        let knots = random_knots(&mut r, p, n);
+        let points: Vec<Vector3<f64>> = (0..n).map(|_| random_vec3(&mut r)).collect();
+        let weights: Vec<f64> = (0..n)
+            .map(|_| 10f64.powf(uniform(&mut r, -3.0, 3.0)))
+            .collect();
+        let c =
+            NurbsCurve::try_new(p, knots.clone(), points.clone(), Some(weights.clone())).unwrap();
+        let (lo, hi) = c.domain();
+        let end = (*c.knot_vector().spans().last().unwrap(), hi);
+        for _ in 0..20 {
+            let t = uniform(&mut r, lo, hi);
+            let (mut a, mut w) = ([Vector3::zeros(); 3], [0.0; 3]);
+            for i in 0..n {
+                for k in 0..3 {
+                    let b = cox_de_boor_d(&knots, i, p, k, t, end) * weights[i];
+                    a[k] += points[i] * b;
+                    w[k] += b;
+                }
+            }
+            let c0 = a[0] / w[0];
+            let c1 = (a[1] - c0 * w[1]) / w[0];
+            let c2 = (a[2] - c1 * 2.0 * w[1] - c0 * w[2]) / w[0];
+            let d = c.derivatives(t).unwrap();
+            for (x, y) in d.iter().zip([c0, c1, c2]) {
+                assert!((x - y).norm() <= 1e-10 * y.norm().max(1.0), "{x} vs {y}");
+            }
+        }
+        assert!(c.point(hi + 1.0).is_none());
+    }
+}
