@@ -227,7 +227,13 @@ impl App {
     pub fn open(&mut self, path: PathBuf) {
         match Scene::load_file(&path) {
             Ok((scene, kind)) => {
-                self.doc = Document::from_file(scene, path.clone(), kind);
+                // An imported IGES file becomes an untitled scene: saving must not write JSON
+                // over the IGES file.
+                self.doc = if crate::scene::is_iges_path(&path) {
+                    Document::new(scene, None)
+                } else {
+                    Document::from_file(scene, path.clone(), kind)
+                };
                 self.runtime.probe.clear();
                 crate::files::remember(&mut self.view.recent, &path);
                 self.error = None;

@@ -57,6 +57,8 @@ pub enum Purpose {
     Open,
     /// Add its objects to the scene.
     Add,
+    /// Import an IGES file's surfaces into the scene.
+    Import,
     /// Save the document to it as a file of this kind.
     SaveAs(FileKind),
     /// Use it as the Export dialog's file.
@@ -68,6 +70,7 @@ impl Purpose {
         match self {
             Purpose::Open => "Open a surface or scene",
             Purpose::Add => "Add the objects of a file",
+            Purpose::Import => "Import the surfaces of an IGES file",
             Purpose::SaveAs(FileKind::Surface) => "Save as a surface file",
             Purpose::SaveAs(FileKind::Scene) => "Save as a scene file",
             Purpose::ExportTo => "Export to",
@@ -82,7 +85,7 @@ impl Purpose {
     fn command(self, path: PathBuf) -> Command {
         match self {
             Purpose::Open => Command::Open(path),
-            Purpose::Add => Command::AddFile(path),
+            Purpose::Add | Purpose::Import => Command::AddFile(path),
             Purpose::SaveAs(kind) => Command::SaveTo { path, kind },
             Purpose::ExportTo => Command::SetExportPath(path),
         }
@@ -137,9 +140,16 @@ impl Files {
         .show_rename(false)
         .id(egui::Id::unique("file chooser"));
         if purpose != Purpose::ExportTo {
-            dialog = dialog.show_files_filter(Box::new(|p: &Path| {
-                p.extension()
-                    .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+            let iges = purpose == Purpose::Import;
+            dialog = dialog.show_files_filter(Box::new(move |p: &Path| {
+                p.extension().is_some_and(|e| {
+                    let iges_file = crate::scene::is_iges_path(p);
+                    if iges {
+                        iges_file
+                    } else {
+                        e.eq_ignore_ascii_case("json") || iges_file
+                    }
+                })
             }));
         }
         let start = folder

@@ -87,6 +87,15 @@ fn file_menu(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
     {
         cx.emit(Command::Choose(Purpose::Add));
     }
+    if ui
+        .button("Import IGES…")
+        .on_hover_text(
+            "Add the B-spline surfaces of an IGES file (in millimetres; trimming is not applied)",
+        )
+        .clicked()
+    {
+        cx.emit(Command::Choose(Purpose::Import));
+    }
     if let Some(p) = cx.autosave.filter(|p| p.exists())
         && ui
             .button("Recover autosave")

@@ -11,10 +11,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use thiserror::Error;
 
-/// The scene file's format name and version.
-pub const SCENE_FORMAT: &str = "pssurf-scene";
-/// The scene file version this build reads and writes.
-pub const SCENE_VERSION: u32 = 1;
+/// The scene file's format name and version (defined with the library's scene files).
+pub use pssurf::io::{SCENE_FORMAT, SCENE_VERSION};
 
 /// A rigid placement with a uniform scale: p ↦ t + s R p (R from Euler angles in degrees,
 /// applied about x, then y, then z).
@@ -131,6 +129,12 @@ pub struct SceneObject {
 pub const MAX_FILE_BYTES: u64 = 2 << 30;
 /// The most read from a file without a size (a pipe, a device such as `/dev/zero`).
 pub const MAX_STREAM_BYTES: u64 = 64 << 20;
+
+/// Whether `path` names an IGES file (extension `igs` or `iges`, any case).
+pub fn is_iges_path(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("igs") || e.eq_ignore_ascii_case("iges"))
+}
 
 /// Reads a text file of bounded size: a regular file up to [`MAX_FILE_BYTES`] (checked
 /// before reading), anything else up to [`MAX_STREAM_BYTES`] (an endless stream is refused
@@ -374,7 +378,8 @@ impl Scene {
         Scene::load_file(path).map(|(scene, _)| scene)
     }
 
-    /// Loads a scene or surface file, telling which it was.
+    /// Loads a scene or surface file, telling which it was; an IGES file (by its extension)
+    /// is imported as a scene of its B-spline surfaces.
     pub fn load_file(path: &Path) -> Result<(Scene, FileKind), SceneError> {
         let text = read_bounded(path).map_err(|source| SceneError::Io {
             path: path.display().to_string(),
@@ -384,10 +389,35 @@ impl Scene {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        Scene::parse(&text, &name).map_err(|message| SceneError::Invalid {
+        let invalid = |message| SceneError::Invalid {
             path: path.display().to_string(),
             message,
-        })
+        };
+        if is_iges_path(path) {
+            return Scene::from_iges(&text, &name)
+                .map(|scene| (scene, FileKind::Scene))
+                .map_err(invalid);
+        }
+        Scene::parse(&text, &name).map_err(invalid)
+    }
+
+    /// The B-spline surfaces of an IGES file's text as objects of group `group` (see
+    /// `pssurf::iges`); an error when the file holds none.
+    pub fn from_iges(text: &str, group: &str) -> Result<Scene, String> {
+        let model = pssurf::iges::read_iges(text).map_err(|e| e.to_string())?;
+        if model.surfaces.is_empty() {
+            return Err("the IGES file holds no B-spline surfaces (entity 128)".into());
+        }
+        let objects = model
+            .surfaces
+            .into_iter()
+            .map(|s| {
+                let mut o = SceneObject::new(&s.name, Surface::Nurbs(s.surface));
+                o.group = group.to_string();
+                o
+            })
+            .collect();
+        Ok(Scene { objects })
     }
 
     /// Why this scene cannot be written as a surface file (None when it can: exactly one

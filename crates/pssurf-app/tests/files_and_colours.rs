@@ -568,3 +568,38 @@ fn an_exported_surface_file_loads_again_and_bad_targets_say_why() {
     let entries = std::fs::read_dir(dir.path()).unwrap().count();
     assert_eq!(entries, 1, "only the exported file, no temporary one");
 }
+
+/// Issue 17: an IGES file opens as an untitled scene of its NURBS surfaces (saving must not
+/// write over the IGES file), and File → Import IGES adds them beside the others.
+#[test]
+fn an_iges_file_opens_as_an_untitled_scene_of_nurbs_surfaces() {
+    let iges =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/iges/bug24012_face.igs");
+    let mut app = App::demo();
+    let before = app.doc.scene.objects.len();
+    app.apply(Command::AddFile(iges.clone()));
+    assert_eq!(app.doc.scene.objects.len(), before + 1, "{}", app.status);
+    assert!(matches!(
+        *app.doc.scene.objects[before].surface,
+        Surface::Nurbs(_)
+    ));
+    // Open replaces the document (App::open: the unsaved-changes question is tested above).
+    app.open(iges.clone());
+    assert_eq!(app.doc.scene.objects.len(), 1, "{}", app.status);
+    assert_eq!(
+        app.doc.path, None,
+        "an imported IGES file is not the document's file"
+    );
+    assert_eq!(app.doc.scene.objects[0].group, "bug24012_face");
+    // A broken IGES file leaves the scene as it was and says why, with the line.
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.igs");
+    std::fs::write(&bad, "not an IGES file\n").unwrap();
+    app.open(bad);
+    assert_eq!(app.doc.scene.objects.len(), 1);
+    assert!(
+        app.error.as_deref().unwrap_or("").contains("line 1"),
+        "{:?}",
+        app.error
+    );
+}

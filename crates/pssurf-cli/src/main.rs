@@ -70,7 +70,8 @@ Typical use:
   pssurf trace ups.json --curvature-lines --seeds 20 -o lines.csv
   pssurf plot ups.json --show mean --lines lines.csv -o lines.png
   pssurf trace ups.json --geodesic --from 4,2 --to 8,3 -o geodesic.csv
-  pssurf probe ups.json --at 5,3 --json";
+  pssurf probe ups.json --at 5,3 --json
+  pssurf import part.igs -o part.json       # IGES B-spline surfaces as a scene";
 
 #[derive(Subcommand, Debug)]
 enum Command {
@@ -105,6 +106,9 @@ enum Command {
     /// cross-planes with their normal sections and osculating circles, Euler's formula, the
     /// torsion and Frenet frames of the coordinate curves.
     Probe(commands::probe::ProbeArgs),
+    /// Import the B-spline surfaces of an IGES file as a scene (one object per surface, in
+    /// millimetres); other entities are listed with their counts.
+    Import(commands::import::ImportArgs),
     /// Render a surface to PNG: shaded, a curvature plot with legend, zebra stripes or
     /// isophotes, with optional overlays.
     Plot(commands::plot::PlotArgs),
@@ -147,6 +151,7 @@ fn main() -> ExitCode {
         Command::Curvature(a) => commands::curvature::run(a),
         Command::Trace(a) => commands::trace::run(a),
         Command::Probe(a) => commands::probe::run(a),
+        Command::Import(a) => commands::import::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),

@@ -828,3 +828,86 @@ fn trace_draws_lines_of_curvature_geodesics_and_the_probe_reports_closed_forms()
         assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");
     }
 }
+
+fn iges_file(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/iges")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+#[test]
+fn import_writes_a_scene_of_nurbs_surfaces_that_info_and_plot_read() {
+    let d = tmp();
+    let scene = d.path().join("hammer.json");
+    let loops = d.path().join("loops.csv");
+    let report = ok_report(&[
+        "import",
+        &iges_file("hammer.iges"),
+        "-o",
+        &s(&scene),
+        "--loops",
+        &s(&loops),
+    ]);
+    assert!(
+        report.contains("45 B-spline surfaces (45 trimmed"),
+        "{report}"
+    );
+    assert!(report.contains("not imported: 402×1"), "{report}");
+    assert!(report.contains("trimming is not applied"), "{report}");
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&["info", &s(&scene), "--json"])).unwrap();
+    let objects = info.as_array().unwrap();
+    assert_eq!(objects.len(), 45);
+    assert!(
+        objects
+            .iter()
+            .all(|o| o["kind"] == "nurbs" && o["valid"] == true)
+    );
+    assert!(ok(&["info", &s(&scene)]).starts_with("scene "));
+    let curves = read_curves(&loops);
+    assert!(curves.len() >= 45, "{} loops", curves.len());
+    let png = d.path().join("hammer.png");
+    ok(&[
+        "plot",
+        &s(&scene),
+        "--show",
+        "absolute",
+        "--size",
+        "200x150",
+        "-o",
+        &s(&png),
+    ]);
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    // Every sample file imports (one line of report per file at least).
+    for name in [
+        "BUC50025.igs",
+        "OCC131-3.igs",
+        "OCC26138_Torus.igs",
+        "OCC8842_cone_Ideas.igs",
+        "PRO20360-T7.igs",
+        "bad_header.igs",
+        "bug22566_test_Bad.igs",
+        "bug22869_Spring.igs",
+        "bug23591_VZ-387.igs",
+        "bug24012_face.igs",
+        "bug33327.igs",
+        "occ22470.igs",
+    ] {
+        let out = d.path().join(format!("{name}.json"));
+        ok(&["import", &iges_file(name), "-o", &s(&out)]);
+        ok(&["info", &s(&out)]);
+    }
+    // Not IGES, truncated IGES, a missing file: one line each, nothing written.
+    let text = std::fs::read_to_string(iges_file("bug24012_face.igs")).unwrap();
+    let cut = write(d.path(), "cut.igs", &text[..text.len() / 2]);
+    let bad = write(d.path(), "bad.igs", "hello\n");
+    for input in [s(&cut), s(&bad), s(&d.path().join("missing.igs"))] {
+        let out = d.path().join("never.json");
+        let msg = fails(&["import", &input, "-o", &s(&out)]);
+        assert_eq!(msg.trim().lines().count(), 1, "{msg}");
+        assert!(msg.contains("line") || msg.contains("cannot read"), "{msg}");
+        assert!(!out.exists());
+    }
+}

@@ -26,5 +26,6 @@ pub use colormap::{ColorMap, ColorScale};
 pub use domain::{DomainCurve, DomainOptions, domain_svg};
 pub use export::{FieldMesh, MeshFormat, write_mesh};
 pub use plot::{
-    Overlays, Picture, PlotOptions, Polyline, Range, Shading, Show, plot, plot_with_lines,
+    Overlays, Picture, PlotOptions, Polyline, Range, Shading, Show, plot, plot_surfaces,
+    plot_with_lines,
 };

@@ -19,6 +19,7 @@ pub mod bezier;
 #[cfg(feature = "expr")]
 pub mod expr;
 pub mod geometry;
+pub mod iges;
 pub mod interrogate;
 #[cfg(feature = "io")]
 pub mod io;

@@ -82,6 +82,28 @@ struct UniformInfo {
 
 /// Runs `pssurf info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
+    if let Some(objects) = scene_objects(&args.surface)? {
+        let infos: Vec<Info> = objects
+            .iter()
+            .enumerate()
+            .map(|(k, o)| {
+                collect(
+                    &o.surface,
+                    format!("{} object {k}: {}", args.surface.display(), o.name),
+                )
+            })
+            .collect();
+        if args.json {
+            outln!("{}", serde_json::to_string_pretty(&infos)?)?;
+        } else {
+            outln!("scene {}: {} objects", args.surface.display(), infos.len())?;
+            for info in &infos {
+                outln!()?;
+                print_table(info)?;
+            }
+        }
+        return Ok(());
+    }
     let s = crate::budget::load_surface(&args.surface)?;
     let info = collect(&s, args.surface.display().to_string());
     if args.json {
@@ -90,6 +112,36 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         print_table(&info)?;
     }
     Ok(())
+}
+
+/// The surfaces of a surface file (one) or of a scene file (every object's).
+pub fn load_surfaces(path: &std::path::Path) -> Result<Vec<Surface>> {
+    Ok(match scene_objects(path)? {
+        Some(objects) if objects.is_empty() => {
+            anyhow::bail!("{}: the scene has no objects", path.display())
+        }
+        Some(objects) => objects.into_iter().map(|o| o.surface).collect(),
+        None => vec![crate::budget::load_surface(path)?],
+    })
+}
+
+/// The objects of a scene file (`pssurf import` writes them), or `None` for a surface file.
+fn scene_objects(path: &std::path::Path) -> Result<Option<Vec<pssurf::io::SceneEntry>>> {
+    use std::io::Read;
+    let mut head = Vec::new();
+    if let Ok(f) = std::fs::File::open(path) {
+        let _ = f.take(4096).read_to_end(&mut head);
+    }
+    if !String::from_utf8_lossy(&head).contains(&format!("\"{}\"", pssurf::io::SCENE_FORMAT)) {
+        return Ok(None);
+    }
+    let text = crate::table::read_text(path)?;
+    if !pssurf::io::is_scene(&text) {
+        return Ok(None);
+    }
+    let objects = pssurf::io::scene_from_json(&text)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok(Some(objects))
 }
 
 fn collect(s: &Surface, file: String) -> Info {

@@ -7,6 +7,7 @@ pub mod eval;
 pub mod export;
 pub mod fairness;
 pub mod fit;
+pub mod import;
 pub mod info;
 pub mod new;
 pub mod noise;

@@ -182,9 +182,13 @@ pub enum ShadingArg {
     Flat,
 }
 
-/// The smallest level at which the surface has at least `target` mesh triangles, at most 5.
-pub fn auto_level(surface: &Surface, target: usize) -> u32 {
-    let pieces = surface.piece_count().max(1);
+/// The smallest level at which the surfaces have at least `target` mesh triangles, at most 5.
+pub fn auto_level(surfaces: &[Surface], target: usize) -> u32 {
+    let pieces = surfaces
+        .iter()
+        .map(|s| s.piece_count())
+        .sum::<usize>()
+        .max(1);
     (0..=5).find(|&l| pieces << (2 * l) >= target).unwrap_or(5)
 }
 
@@ -211,8 +215,8 @@ pub fn estimate(surface: &Surface, level: u32, size: Size) -> Estimate {
     e
 }
 
-/// The plot options of the arguments, for a surface.
-pub fn options(args: &PlotArgs, surface: &Surface) -> Result<PlotOptions> {
+/// The plot options of the arguments, for the surfaces drawn together.
+pub fn options(args: &PlotArgs, surfaces: &[Surface]) -> Result<PlotOptions> {
     let show = args.show.show();
     let q = match show {
         Show::Quantity(q) => q,
@@ -232,8 +236,16 @@ pub fn options(args: &PlotArgs, surface: &Surface) -> Result<PlotOptions> {
             pssurf::text::Short(f)
         ),
     };
-    let level = args.level.unwrap_or_else(|| auto_level(surface, 200_000));
-    estimate(surface, level, args.size).check()?;
+    let level = args.level.unwrap_or_else(|| auto_level(surfaces, 200_000));
+    // The frame buffers once, the meshes of every surface.
+    let mut total = estimate(&surfaces[0], level, args.size);
+    for s in &surfaces[1..] {
+        let e = estimate(s, level, args.size);
+        total.memory = total
+            .memory
+            .saturating_add(e.memory.saturating_sub(crate::budget::base_memory()));
+    }
+    total.check()?;
     Ok(PlotOptions {
         show,
         colormap: args.colors.map(q)?,
@@ -270,8 +282,8 @@ pub fn options(args: &PlotArgs, surface: &Surface) -> Result<PlotOptions> {
 
 /// Runs `pssurf plot`.
 pub fn run(args: &PlotArgs) -> Result<()> {
-    let surface = crate::budget::load_surface(&args.surface)?;
-    let opts = options(args, &surface)?;
+    let surfaces = super::info::load_surfaces(&args.surface)?;
+    let opts = options(args, &surfaces)?;
     let mut extra = Vec::new();
     for path in &args.lines {
         let curves = read_lines(path)?;
@@ -291,7 +303,7 @@ pub fn run(args: &PlotArgs) -> Result<()> {
             }
         }));
     }
-    let picture = pssurf_viz::plot_with_lines(&surface, &opts, extra);
+    let picture = pssurf_viz::plot_surfaces(&surfaces, &opts, extra);
     write_png(&picture, &args.output)?;
     eprintln!(
         "drew {} triangles (level {}) at {}x{}; wrote {}",

@@ -193,9 +193,19 @@ pub fn plot(surface: &Surface, opts: &PlotOptions) -> Picture {
 
 /// Renders a surface with extra polylines drawn over it (curves traced on the surface).
 pub fn plot_with_lines(surface: &Surface, opts: &PlotOptions, extra: Vec<Polyline>) -> Picture {
+    plot_surfaces(std::slice::from_ref(surface), opts, extra)
+}
+
+/// Renders several surfaces in one picture (a scene: the parts of an imported model), with
+/// one colour scale and extra polylines.
+pub fn plot_surfaces(surfaces: &[Surface], opts: &PlotOptions, extra: Vec<Polyline>) -> Picture {
     let need_curvature = matches!(opts.show, Show::Quantity(_));
-    let sampled = sample_patches(surface, opts.level, need_curvature);
-    let mut lines = overlay_lines(surface, &opts.overlays, opts.level);
+    let mut sampled = SampledSurface::default();
+    let mut lines = Vec::new();
+    for surface in surfaces {
+        sampled.append(sample_patches(surface, opts.level, need_curvature));
+        lines.extend(overlay_lines(surface, &opts.overlays, opts.level));
+    }
     lines.extend(extra);
     plot_sampled(&sampled, &lines, opts)
 }

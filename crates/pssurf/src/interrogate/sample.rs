@@ -278,6 +278,20 @@ fn rectangle_triangles(n: usize) -> Vec<[u32; 3]> {
 }
 
 impl SampledSurface {
+    /// Appends `other` (another surface's samples) as more vertices and triangles, for
+    /// pictures of several surfaces; piece numbers keep their own surface's meaning.
+    pub fn append(&mut self, other: SampledSurface) {
+        let offset = self.mesh.positions.len() as u32;
+        self.mesh.positions.extend(other.mesh.positions);
+        self.mesh.normals.extend(other.mesh.normals);
+        self.mesh.uvs.extend(other.mesh.uvs);
+        self.mesh
+            .triangles
+            .extend(other.mesh.triangles.iter().map(|t| t.map(|k| k + offset)));
+        self.patch.extend(other.patch);
+        self.curvature.extend(other.curvature);
+    }
+
     /// One curvature quantity per vertex (NaN at singular points).
     ///
     /// # Panics

@@ -1,8 +1,10 @@
-//! Files: the versioned pssurf JSON format (see `docs/format.md`) and atomic writing.
+//! Files: the versioned pssurf JSON format (see `docs/format.md`), scene files of named
+//! surfaces, curves as CSV or OBJ, and atomic writing.
 
 mod atomic;
 mod curves;
 mod format;
+mod scene;
 
 pub use atomic::{
     Durability, atomic_write, atomic_write_bytes, io_cause, remove_pending_temp_files,
@@ -13,6 +15,9 @@ pub use curves::{
 };
 pub use format::{
     FORMAT_VERSION, FileError, FormatError, from_json_str, load, load_limited, save, to_json_string,
+};
+pub use scene::{
+    SCENE_FORMAT, SCENE_VERSION, SceneEntry, is_scene, scene_from_json, scene_to_json,
 };
 
 #[cfg(test)]

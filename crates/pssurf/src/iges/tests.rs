@@ -1,0 +1,275 @@
+//! IGES import on the real files of `../shared/data/iges/` (checked against a reference
+//! reading of the parameter data written here), on files written by the test (delimiters,
+//! Hollerith strings, `D` exponents, comments, transformations, units), and on malformed
+//! variants.
+
+use nalgebra::{Point2, Vector3};
+use rand::RngExt;
+
+use super::*;
+use crate::surface::ParametricSurface;
+use crate::test_util::*;
+
+fn data(name: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/iges")
+        .join(name);
+    String::from_utf8_lossy(&std::fs::read(path).unwrap()).into_owned()
+}
+
+/// The sample files with their numbers of B-spline surfaces (the README's table).
+const SAMPLES: [(&str, usize); 13] = [
+    ("BUC50025.igs", 7),
+    ("OCC131-3.igs", 3),
+    ("OCC26138_Torus.igs", 1),
+    ("OCC8842_cone_Ideas.igs", 2),
+    ("PRO20360-T7.igs", 1),
+    ("bad_header.igs", 1),
+    ("bug22566_test_Bad.igs", 1),
+    ("bug22869_Spring.igs", 2),
+    ("bug23591_VZ-387.igs", 1),
+    ("bug24012_face.igs", 1),
+    ("bug33327.igs", 10),
+    ("occ22470.igs", 18),
+    ("hammer.iges", 45),
+];
+
+/// The reference reading: the numbers of entity `de`'s parameter lines, found by their back
+/// pointers (columns 65–72), cut at the first `;`, split at `,`, `D` exponents read as `E`.
+fn reference_params(text: &str, de: usize) -> Vec<f64> {
+    let mut s = String::new();
+    for line in text.lines() {
+        if line.len() >= 73 && &line[72..73] == "P" && line[64..72].trim().parse() == Ok(de) {
+            s.push_str(&line[..64]);
+        }
+    }
+    let s = &s[..s.find(';').unwrap()];
+    s.split(',')
+        .map(|f| {
+            f.trim()
+                .replace(['D', 'd'], "E")
+                .parse::<f64>()
+                .unwrap_or(0.0)
+        })
+        .collect()
+}
+
+/// N_{i,p}(t) by the recursion, the domain's end closed on the last non-empty span.
+fn basis(u: &[f64], i: usize, p: usize, t: f64, last: usize) -> f64 {
+    if p == 0 {
+        if t == u[last + 1] {
+            return f64::from(i == last);
+        }
+        return f64::from(u[i] <= t && t < u[i + 1]);
+    }
+    let a = |n: f64, d: f64| if d == 0.0 { 0.0 } else { n / d };
+    a(t - u[i], u[i + p] - u[i]) * basis(u, i, p - 1, t, last)
+        + a(u[i + p + 1] - t, u[i + p + 1] - u[i + 1]) * basis(u, i + 1, p - 1, t, last)
+}
+
+/// The point of a 128 entity from its reference parameters (u fastest, as IGES lists them).
+fn reference_point(v: &[f64], uv: Point2<f64>) -> Vector3<f64> {
+    let (k1, k2, m1, m2) = (v[1] as usize, v[2] as usize, v[3] as usize, v[4] as usize);
+    let (n1, n2) = (k1 + 1, k2 + 1);
+    let ku = &v[10..10 + k1 + m1 + 2];
+    let kv = &v[10 + k1 + m1 + 2..10 + k1 + m1 + 2 + k2 + m2 + 2];
+    let w0 = 10 + k1 + m1 + 2 + k2 + m2 + 2;
+    let p0 = w0 + n1 * n2;
+    let last = |k: &[f64], n: usize, m: usize| (m..n).rev().find(|&i| k[i] < k[i + 1]).unwrap();
+    let (lu, lv) = (last(ku, n1, m1), last(kv, n2, m2));
+    let (mut num, mut den) = (Vector3::zeros(), 0.0);
+    for j in 0..n2 {
+        for i in 0..n1 {
+            let s = j * n1 + i;
+            let b = basis(ku, i, m1, uv.x, lu) * basis(kv, j, m2, uv.y, lv) * v[w0 + s];
+            num += Vector3::new(v[p0 + 3 * s], v[p0 + 3 * s + 1], v[p0 + 3 * s + 2]) * b;
+            den += b;
+        }
+    }
+    num / den
+}
+
+#[test]
+fn every_sample_file_loads_and_its_surfaces_match_a_reference_reading() {
+    let mut r = rng(1710);
+    let mut compared = 0;
+    for (name, surfaces) in SAMPLES {
+        let text = data(name);
+        let model = read_iges(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(model.surfaces.len(), surfaces, "{name}");
+        for s in &model.surfaces {
+            // Surfaces without a transformation: the reference reading has none to apply.
+            let entry_line = text
+                .lines()
+                .filter(|l| l.len() >= 73 && &l[72..73] == "D")
+                .nth(s.entry - 1)
+                .unwrap();
+            if entry_line[48..56].trim().parse::<i64>().unwrap_or(0) != 0 {
+                continue;
+            }
+            let v = reference_params(&text, s.entry);
+            let (lo, hi) = s.surface.domain_bounds();
+            let size = s
+                .surface
+                .points()
+                .iter()
+                .map(|p| p.norm())
+                .fold(1.0, f64::max);
+            for _ in 0..10 {
+                let uv = Point2::new(uniform(&mut r, lo.x, hi.x), uniform(&mut r, lo.y, hi.y));
+                let ours = s.surface.point(uv).unwrap() / model.unit.1;
+                let theirs = reference_point(&v, uv);
+                assert!(
+                    (ours - theirs).norm() <= 1e-12 * size,
+                    "{name} D{}: {ours} vs {theirs}",
+                    s.entry
+                );
+                compared += 1;
+            }
+        }
+    }
+    assert!(compared >= 500, "{compared} points compared");
+}
+
+#[test]
+fn sample_files_report_what_they_hold() {
+    let torus = read_iges(&data("OCC26138_Torus.igs")).unwrap();
+    assert!(torus.surfaces[0].trimmed && !torus.surfaces[0].loops.is_empty());
+    assert!(
+        torus
+            .warnings
+            .iter()
+            .any(|w| w.contains("trimming is not applied"))
+    );
+    let cone = read_iges(&data("OCC8842_cone_Ideas.igs")).unwrap();
+    // I-DEAS writes D exponents and B-rep entities, which are counted, not refused.
+    assert_eq!(cone.unknown.get(&514), Some(&1));
+    assert_eq!(cone.unknown.get(&508), Some(&2));
+    let bad = read_iges(&data("bug22566_test_Bad.igs")).unwrap();
+    assert!(
+        bad.warnings
+            .iter()
+            .any(|w| w.contains("not a B-spline surface"))
+    );
+}
+
+// ---- files written by the test ----
+
+/// An IGES file from Global fields and entities (type, parameter text, transformation DE).
+fn iges(global: &str, entities: &[(i64, &str, usize)]) -> String {
+    let mut out = String::new();
+    let rec = |out: &mut String, body: &str, letter: char, n: usize| {
+        out.push_str(&format!("{body:<72}{letter}{n:>7}\n"));
+    };
+    rec(&mut out, "written by the pssurf test", 'S', 1);
+    let g: Vec<String> = global
+        .as_bytes()
+        .chunks(72)
+        .map(|c| String::from_utf8_lossy(c).into_owned())
+        .collect();
+    for (k, line) in g.iter().enumerate() {
+        rec(&mut out, line, 'G', k + 1);
+    }
+    let mut p_lines: Vec<(String, usize)> = Vec::new();
+    let mut dirs = Vec::new();
+    for (k, (kind, params, transform)) in entities.iter().enumerate() {
+        let de = 2 * k + 1;
+        let start = p_lines.len() + 1;
+        for chunk in params.as_bytes().chunks(64) {
+            p_lines.push((String::from_utf8_lossy(chunk).into_owned(), de));
+        }
+        let count = p_lines.len() + 1 - start;
+        dirs.push(format!(
+            "{kind:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{transform:>8}{:>8}{:>8}",
+            0, 0, 0, 0, 0, "00000000"
+        ));
+        dirs.push(format!(
+            "{kind:>8}{:>8}{:>8}{count:>8}{:>8}{:>8}{:>8}{:>8}{:>8}",
+            0, 0, 0, "", "", "", 0
+        ));
+    }
+    for (k, d) in dirs.iter().enumerate() {
+        rec(&mut out, d, 'D', k + 1);
+    }
+    for (k, (text, de)) in p_lines.iter().enumerate() {
+        rec(&mut out, &format!("{text:<64}{de:>8}"), 'P', k + 1);
+    }
+    out.push_str(&format!("{:<72}T{:>7}\n", "S      1", 1));
+    out
+}
+
+/// A bilinear 128 patch: (0,0,0), (1,0,0), (0,1,0), (1,1,1) over [0,1]².
+const BILINEAR: &str = "128,1,1,1,1,0,0,1,0,0,0.,0.,1.,1.,0.,0.,1.,1.,1.,1.,1.,1.,0.,0.,0.,1.,0.,0.,0.,1.,0.,1.,1.,1.,0.,1.,0.,1.;";
+
+#[test]
+fn delimiters_hollerith_strings_exponents_units_and_transformations() {
+    // Other delimiters (# and $), a Hollerith string holding them, inches.
+    let global = "1H##1H$#5HA#B$C#7HNAME#$X#8Hpssurf!!########1.0D0#1#2HIN$";
+    let params = BILINEAR
+        .replace(',', "#")
+        .replace(';', "$ this is a comment");
+    let text = iges(global, &[(128, &params, 0)]);
+    let m = read_iges(&text).unwrap();
+    assert_eq!(m.unit, ("inch".to_string(), 25.4));
+    let p = m.surfaces[0].surface.point(Point2::new(1.0, 1.0)).unwrap();
+    assert!((p - Vector3::new(25.4, 25.4, 25.4)).norm() < 1e-12);
+    // A 124 rotation about z by 90° with a translation, in millimetres (unit flag 2).
+    let t124 = "124,0.,-1.,0.,10.,1.,0.,0.,20.,0.,0.,1.,30.;";
+    let text = iges(
+        ",,11HMM,ALSO#$%&,,,,,,,,,,1.,2,2HMM;",
+        &[(124, t124, 0), (128, BILINEAR, 1)],
+    );
+    let m = read_iges(&text).unwrap();
+    let p = m.surfaces[0].surface.point(Point2::new(1.0, 0.0)).unwrap();
+    // (1, 0, 0) ↦ R (1, 0, 0) + t = (0, 1, 0) + (10, 20, 30).
+    assert!((p - Vector3::new(10.0, 21.0, 30.0)).norm() < 1e-12, "{p}");
+    // D exponents, blank lines between records.
+    let text = iges(",,;", &[(128, &BILINEAR.replace("1.,", "1.0D0,"), 0)]).replace("\nP", "\n\nP");
+    assert!(read_iges(&text).is_ok());
+}
+
+#[test]
+fn malformed_files_fail_with_the_line_and_never_panic() {
+    let good = iges(",,;", &[(128, BILINEAR, 0)]);
+    if let Err(e) = read_iges(&good) {
+        panic!("{e}\n{good}");
+    }
+    let lines: Vec<&str> = good.lines().collect();
+    let with = |k: usize, f: &dyn Fn(&str) -> String| {
+        let mut l: Vec<String> = lines.iter().map(|s| s.to_string()).collect();
+        l[k] = f(&l[k]);
+        l.join("\n")
+    };
+    let error = |text: &str| read_iges(text).expect_err("should fail");
+    // Truncated in the middle of the parameter data.
+    let e = error(&lines[..lines.len() - 2].join("\n"));
+    assert!(e.message.contains("record delimiter"), "{e}");
+    // A short record.
+    let e = error(&with(2, &|s| s[..40].to_string()));
+    assert_eq!(e.line, 3, "{e}");
+    // A bad number in the parameters, named with its line.
+    let p = lines
+        .iter()
+        .position(|l| l.as_bytes().get(72) == Some(&b'P'))
+        .unwrap();
+    let e = error(&with(p, &|s| s.replacen("0.,", "0x,", 1)));
+    assert_eq!(e.line, p + 1);
+    assert!(e.message.contains("not a number"), "{e}");
+    // A parameter pointer out of range.
+    let e = error(&with(2, &|s| format!("{}{:>8}{}", &s[..8], 99, &s[16..])));
+    assert!(e.message.contains("outside the Parameter section"), "{e}");
+    // A transformation pointer to nothing.
+    let e = error(&with(2, &|s| format!("{}{:>8}{}", &s[..48], 41, &s[56..])));
+    assert!(e.message.contains("names no directory entry"), "{e}");
+    // Random damage anywhere: an error or a model, never a panic.
+    let mut r = rng(1711);
+    let bytes = good.as_bytes();
+    for _ in 0..2000 {
+        let mut b = bytes.to_vec();
+        for _ in 0..3 {
+            let k = r.random_range(0..b.len());
+            b[k] = b"0123456789,;.-+HDE \n"[r.random_range(0..20)];
+        }
+        let _ = read_iges(&String::from_utf8_lossy(&b));
+    }
+}
