@@ -71,7 +71,8 @@ Typical use:
   pssurf plot ups.json --show mean --lines lines.csv -o lines.png
   pssurf trace ups.json --geodesic --from 4,2 --to 8,3 -o geodesic.csv
   pssurf probe ups.json --at 5,3 --json
-  pssurf import part.igs -o part.json       # IGES B-spline surfaces as a scene";
+  pssurf import part.igs -o part.json       # IGES B-spline surfaces as a scene
+  pssurf approx part.json --object 0 --tolerance 0.01 -o ups.json";
 
 #[derive(Subcommand, Debug)]
 enum Command {
@@ -106,6 +107,9 @@ enum Command {
     /// cross-planes with their normal sections and osculating circles, Euler's formula, the
     /// torsion and Frenet frames of the coordinate curves.
     Probe(commands::probe::ProbeArgs),
+    /// Approximate a NURBS surface by a UPS surface (thesis 6.4.2), reporting the deviation;
+    /// --tolerance refines until it is met.
+    Approx(commands::approx::ApproxArgs),
     /// Import the B-spline surfaces of an IGES file as a scene (one object per surface, in
     /// millimetres); other entities are listed with their counts.
     Import(commands::import::ImportArgs),
@@ -152,6 +156,7 @@ fn main() -> ExitCode {
         Command::Trace(a) => commands::trace::run(a),
         Command::Probe(a) => commands::probe::run(a),
         Command::Import(a) => commands::import::run(a),
+        Command::Approx(a) => commands::approx::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),

@@ -880,6 +880,62 @@ fn import_writes_a_scene_of_nurbs_surfaces_that_info_and_plot_read() {
         &s(&png),
     ]);
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    // NURBS → UPS: the tolerance is met and reported; the result is a UPS surface file.
+    let ups = d.path().join("ups.json");
+    let report = ok_report(&[
+        "approx",
+        &s(&scene),
+        "--object",
+        "1",
+        "--tolerance",
+        "0.05",
+        "-o",
+        &s(&ups),
+    ]);
+    let last = report
+        .lines()
+        .rev()
+        .find(|l| l.contains("max deviation"))
+        .unwrap();
+    let max: f64 = last
+        .split("max deviation ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(max <= 0.05, "{report}");
+    let info: serde_json::Value = serde_json::from_str(&ok(&["info", &s(&ups), "--json"])).unwrap();
+    assert_eq!(info["kind"], "parametric");
+    for args in [
+        vec!["approx", &s(&scene), "-o", &s(&ups)],
+        vec!["approx", &s(&scene), "--object", "99", "-o", &s(&ups)],
+        vec![
+            "approx",
+            &s(&scene),
+            "--object",
+            "0",
+            "--nu",
+            "3",
+            "-o",
+            &s(&ups),
+        ],
+        vec![
+            "approx",
+            &s(&scene),
+            "--object",
+            "0",
+            "--tolerance",
+            "-1",
+            "-o",
+            &s(&ups),
+        ],
+    ] {
+        let msg = fails(&args);
+        assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");
+    }
     // Every sample file imports (one line of report per file at least).
     for name in [
         "BUC50025.igs",

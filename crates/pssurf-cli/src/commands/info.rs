@@ -114,6 +114,20 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     Ok(())
 }
 
+/// The surfaces of a surface file (one, named by the file) or of a scene file, with names.
+pub fn load_named_surfaces(path: &std::path::Path) -> Result<Vec<(String, Surface)>> {
+    Ok(match scene_objects(path)? {
+        Some(objects) if objects.is_empty() => {
+            anyhow::bail!("{}: the scene has no objects", path.display())
+        }
+        Some(objects) => objects.into_iter().map(|o| (o.name, o.surface)).collect(),
+        None => vec![(
+            path.display().to_string(),
+            crate::budget::load_surface(path)?,
+        )],
+    })
+}
+
 /// The surfaces of a surface file (one) or of a scene file (every object's).
 pub fn load_surfaces(path: &std::path::Path) -> Result<Vec<Surface>> {
     Ok(match scene_objects(path)? {

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod approx;
 pub mod curvature;
 pub mod denoise;
 pub mod domain;

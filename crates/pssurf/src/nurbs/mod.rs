@@ -6,12 +6,16 @@
 //! The evaluator is written here, allocation-free (degrees up to [`MAX_DEGREE`]), for the hot
 //! loops; the tests check it against the recursive Cox–de Boor definition and against curvo.
 
+pub mod approx;
 mod basis;
 mod curve;
 mod surface;
 #[cfg(test)]
 mod tests;
 
+pub use approx::{
+    ApproxError, ApproxOptions, Approximation, approximate, default_counts, ups_of_nurbs,
+};
 pub use basis::{BasisDerivs, KnotError, KnotVector, MAX_DEGREE};
 pub use curve::NurbsCurve;
 pub use surface::{NurbsError, NurbsSurface};

@@ -368,3 +368,151 @@ fn curves_match_the_recursive_definition() {
         assert!(c.point(hi + 1.0).is_none());
     }
 }
+
+/// A smooth rational bicubic surface over [0, 3] × [0, 2] (a wavy net, weights 0.5 … 2).
+fn wavy_bicubic() -> NurbsSurface {
+    let (nu, nv) = (6, 5);
+    let ku = vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0];
+    let kv = vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0, 2.0];
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            let (x, y) = (i as f64 * 0.6, j as f64 * 0.5);
+            points.push(Vector3::new(x, y, 0.4 * (1.3 * x).sin() * (1.1 * y).cos()));
+            weights.push(1.0 + 0.5 * ((i + 2 * j) % 3) as f64 - 0.25);
+        }
+    }
+    NurbsSurface::try_new([3, 3], [ku, kv], [nu, nv], points, Some(weights)).unwrap()
+}
+
+#[test]
+fn the_ups_approximation_interpolates_values_and_derivatives_at_every_vertex() {
+    use crate::surface::{Surface, UpsSurface};
+    let s = wavy_bicubic();
+    let n = [5, 4];
+    let ups = approx::ups_of_nurbs(&s, n).unwrap();
+    let UpsSurface::Parametric(u) = &ups else {
+        panic!("a parametric UPS surface")
+    };
+    let grid = u.grid().clone();
+    let lattice = *grid.lattice();
+    let (lo, hi) = s.domain_bounds();
+    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+    let surface = Surface::from(ups.clone());
+    let mut vertices = 0;
+    for slot in grid.real_slots() {
+        let [i, j] = grid.lattice_point(slot);
+        let v = lattice.point([i, j]);
+        // θ(V) = (ū₀ + W i/n_u, v̄₀ + H j/n_v): the corners of Ω go to those of R.
+        let q = Point2::new(lo.x + w * i as f64 / 5.0, lo.y + h * j as f64 / 4.0);
+        let exact = s.jet(q).unwrap().jet;
+        let ours = surface.jet(v).unwrap().jet;
+        let scale = exact.value.norm().max(1.0);
+        assert!(
+            (ours.value - exact.value).norm() < 1e-12 * scale,
+            "(6.3) at {i}, {j}"
+        );
+        // (6.4)–(6.5) by the chain rule through θ (lattice base 1).
+        let (a11, a12, a22) = (
+            w / 5.0,
+            -(3f64.sqrt() / 3.0) * w / 5.0,
+            2.0 * 3f64.sqrt() / 3.0 * h / 4.0,
+        );
+        let du = exact.dx * a11;
+        let dv = exact.dx * a12 + exact.dy * a22;
+        assert!(
+            (ours.dx - du).norm() < 1e-11 * du.norm().max(1.0),
+            "(6.4) at {i}, {j}"
+        );
+        assert!(
+            (ours.dy - dv).norm() < 1e-11 * dv.norm().max(1.0),
+            "(6.5) at {i}, {j}"
+        );
+        vertices += 1;
+    }
+    assert_eq!(vertices, 6 * 5);
+}
+
+#[test]
+fn the_ups_approximation_converges_with_third_order_and_meets_a_tolerance() {
+    // A bicubic Bézier patch: doubling n divides the deviation by 8 (third order); with
+    // rational weights the ratio approaches 8 from below (higher terms of the quotient).
+    let mut points = Vec::new();
+    for i in 0..4 {
+        for j in 0..4 {
+            points.push(Vector3::new(i as f64, j as f64, 0.3 * ((i * j) % 3) as f64));
+        }
+    }
+    let k = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+    let rational: Vec<f64> = (0..16).map(|i| 1.0 + 0.3 * (i % 3) as f64).collect();
+    for weights in [None, Some(rational)] {
+        let is_rational = weights.is_some();
+        let b = NurbsSurface::try_new(
+            [3, 3],
+            [k.clone(), k.clone()],
+            [4, 4],
+            points.clone(),
+            weights,
+        )
+        .unwrap();
+        let dev = |n: usize| {
+            let ups = approx::ups_of_nurbs(&b, [n, n]).unwrap();
+            approx::deviation(&b, &ups, [n, n], 3).0
+        };
+        let d: Vec<f64> = [4, 8, 16, 32, 64].iter().map(|&n| dev(n)).collect();
+        let ratios: Vec<f64> = d.windows(2).map(|w| w[0] / w[1]).collect();
+        if is_rational {
+            assert!(ratios.windows(2).all(|w| w[1] > w[0]), "{ratios:?}");
+            assert!(ratios[3] > 7.0 && ratios[3] < 8.5, "{ratios:?}");
+        } else {
+            assert!(ratios.iter().all(|r| (7.5..8.6).contains(r)), "{ratios:?}");
+        }
+    }
+    let s = wavy_bicubic();
+    // (6.9): n ≈ (√3/3) k − 1.
+    assert_eq!(default_counts(&s), [2, 2]);
+    let a = approximate(
+        &s,
+        &ApproxOptions {
+            tolerance: Some(1e-4),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(a.max_deviation <= 1e-4 && a.rms_deviation <= a.max_deviation);
+    assert!(a.tried.len() >= 2 && a.tried.windows(2).all(|w| w[1].0[0] > w[0].0[0]));
+    // A bilinear patch composed with the affine θ is quadratic: reproduced exactly.
+    let bilinear = NurbsSurface::try_new(
+        [1, 1],
+        [vec![0.0, 0.0, 2.0, 2.0], vec![0.0, 0.0, 1.0, 1.0]],
+        [2, 2],
+        vec![
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+            Vector3::new(2.0, 0.0, 0.0),
+            Vector3::new(2.0, 1.0, 1.0),
+        ],
+        None,
+    )
+    .unwrap();
+    let a = approximate(
+        &bilinear,
+        &ApproxOptions {
+            counts: Some([3, 2]),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(a.max_deviation < 1e-14, "{}", a.max_deviation);
+    // Bad requests.
+    assert!(approx::ups_of_nurbs(&s, [0, 3]).is_err());
+    let e = approximate(
+        &s,
+        &ApproxOptions {
+            tolerance: Some(-1.0),
+            ..Default::default()
+        },
+    );
+    assert!(matches!(e, Err(ApproxError::Tolerance(_))));
+}
