@@ -603,3 +603,36 @@ fn an_iges_file_opens_as_an_untitled_scene_of_nurbs_surfaces() {
         app.error
     );
 }
+
+/// Issue 17: the NURBS → UPS panel adds a UPS approximation of the selected NURBS surface
+/// within the tolerance (one undo step).
+#[test]
+fn the_nurbs_panel_adds_a_ups_approximation_within_the_tolerance() {
+    let iges =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/iges/bug24012_face.igs");
+    let mut app = App::demo();
+    app.open(iges);
+    app.doc.selection.object = Some(0);
+    let mut h = harness(app);
+    press(&mut h, "NURBS to UPS");
+    press(&mut h, "Approximate");
+    let app = h.state();
+    assert!(app.status.starts_with("approximated"), "{}", app.status);
+    assert_eq!(app.doc.scene.objects.len(), 2);
+    let max: f64 = app
+        .status
+        .split("max deviation ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(max <= 0.01, "{}", app.status);
+    assert!(matches!(
+        *app.doc.scene.objects[1].surface,
+        Surface::Uniform(_)
+    ));
+    assert_eq!(app.doc.undo_name(), Some("new surface"));
+}

@@ -6,11 +6,13 @@
 
 mod curves;
 mod noise;
+mod nurbs;
 mod subdivision;
 mod wavelet;
 
 pub use curves::CurvesPanel;
 pub use noise::NoisePanel;
+pub use nurbs::NurbsPanel;
 pub use subdivision::SubdivisionPanel;
 pub use wavelet::WaveletPanel;
 
@@ -41,6 +43,7 @@ pub fn default_panels() -> Vec<Box<dyn Panel>> {
         Box::new(WaveletPanel::default()),
         Box::new(NoisePanel::default()),
         Box::new(CurvesPanel::default()),
+        Box::new(NurbsPanel::default()),
     ]
 }
 
