@@ -86,3 +86,17 @@ pub fn grid(nx: usize, ny: usize) -> Vec<Point2<f64>> {
     }
     out
 }
+
+/// `n` points of the R2 low-discrepancy sequence in the box [lo, hi] (spread evenly, in no
+/// particular order).
+pub fn r2_points(n: usize, lo: Point2<f64>, hi: Point2<f64>) -> Vec<Point2<f64>> {
+    (0..n)
+        .map(|k| {
+            let (a, b) = (
+                (k as f64 * 0.754_877_666).fract(),
+                (k as f64 * 0.569_840_291).fract(),
+            );
+            Point2::new(lo.x + a * (hi.x - lo.x), lo.y + b * (hi.y - lo.y))
+        })
+        .collect()
+}

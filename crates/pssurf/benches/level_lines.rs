@@ -47,16 +47,7 @@ fn curvature_lines(c: &mut Criterion) {
     use rayon::prelude::*;
     let surface = Surface::Functional(common::franke_spline(5_000));
     let (lo, hi) = surface.domain_bounds();
-    let seeds: Vec<Point2<f64>> = (0..1000)
-        .map(|k| {
-            // A low-discrepancy (R2) sequence over the domain's box.
-            let (a, b) = (
-                (k as f64 * 0.754_877_666).fract(),
-                (k as f64 * 0.569_840_291).fract(),
-            );
-            Point2::new(lo.x + a * (hi.x - lo.x), lo.y + b * (hi.y - lo.y))
-        })
-        .collect();
+    let seeds = common::r2_points(1000, lo, hi);
     let opts = FieldLineOptions {
         max_points: 100,
         ..FieldLineOptions::default()

@@ -2,8 +2,10 @@
 //! derivatives on a bicubic surface): the jet (point, first and second derivatives) of a
 //! rational bicubic surface with a 20 × 20 net, at random parameters, on one core.
 
+mod common;
+
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use nalgebra::{Point2, Vector3};
+use nalgebra::Vector3;
 use pssurf::nurbs::NurbsSurface;
 use pssurf::surface::ParametricSurface;
 use std::hint::black_box;
@@ -39,15 +41,7 @@ fn evaluation(c: &mut Criterion) {
     let s = bicubic(20);
     let (lo, hi) = s.domain_bounds();
     // Parameters from a low-discrepancy sequence, in no particular order.
-    let pts: Vec<Point2<f64>> = (0..100_000)
-        .map(|k| {
-            let (a, b) = (
-                (k as f64 * 0.754_877_666).fract(),
-                (k as f64 * 0.569_840_291).fract(),
-            );
-            Point2::new(lo.x + a * (hi.x - lo.x), lo.y + b * (hi.y - lo.y))
-        })
-        .collect();
+    let pts = common::r2_points(100_000, lo, hi);
     let mut g = c.benchmark_group("nurbs_bicubic_20x20");
     g.throughput(Throughput::Elements(pts.len() as u64));
     g.bench_function("jet (point, 1st and 2nd derivatives), one core", |b| {

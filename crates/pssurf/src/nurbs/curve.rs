@@ -4,7 +4,7 @@
 use nalgebra::Vector3;
 
 use super::basis::KnotVector;
-use super::surface::NurbsError;
+use super::surface::{NurbsError, check_net};
 
 /// A NURBS curve in space.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,25 +29,8 @@ impl NurbsCurve {
             direction: "curve",
             source,
         })?;
-        if let Some(i) = points
-            .iter()
-            .position(|p| !p.iter().all(|&x| crate::limits::value_ok(x)))
-        {
-            return Err(NurbsError::Point(i));
-        }
         let rational = weights.is_some();
-        let weights = weights.unwrap_or_else(|| vec![1.0; n]);
-        if weights.len() != n {
-            return Err(NurbsError::Count {
-                what: "weights",
-                found: weights.len(),
-                nu: n,
-                nv: 1,
-            });
-        }
-        if let Some(i) = weights.iter().position(|&w| !crate::limits::weight_ok(w)) {
-            return Err(NurbsError::Weight(i, weights[i]));
-        }
+        let weights = check_net(&points, weights)?;
         Ok(NurbsCurve {
             knots,
             points,

@@ -92,20 +92,11 @@ impl NurbsSurface {
         if points.len() != n {
             return Err(count_error("control points", points.len()));
         }
-        if let Some(i) = points
-            .iter()
-            .position(|p| !p.iter().all(|&x| crate::limits::value_ok(x)))
-        {
-            return Err(NurbsError::Point(i));
-        }
         let rational = weights.is_some();
-        let weights = weights.unwrap_or_else(|| vec![1.0; n]);
-        if weights.len() != n {
-            return Err(count_error("weights", weights.len()));
-        }
-        if let Some(i) = weights.iter().position(|&w| !crate::limits::weight_ok(w)) {
-            return Err(NurbsError::Weight(i, weights[i]));
-        }
+        let weights = check_net(&points, weights).map_err(|e| match e {
+            NurbsError::Count { found, .. } => count_error("weights", found),
+            e => e,
+        })?;
         let homogeneous = homogeneous(&points, &weights);
         Ok(NurbsSurface {
             knots: [u, v],
@@ -235,6 +226,34 @@ impl NurbsSurface {
         }
         out
     }
+}
+
+/// Checks control points (finite, within ±1e60) and weights (one per point, 1e-30 … 1e30;
+/// all 1 when `None`); the weights.
+pub(crate) fn check_net(
+    points: &[Vector3<f64>],
+    weights: Option<Vec<f64>>,
+) -> Result<Vec<f64>, NurbsError> {
+    let n = points.len();
+    if let Some(i) = points
+        .iter()
+        .position(|p| !p.iter().all(|&x| crate::limits::value_ok(x)))
+    {
+        return Err(NurbsError::Point(i));
+    }
+    let weights = weights.unwrap_or_else(|| vec![1.0; n]);
+    if weights.len() != n {
+        return Err(NurbsError::Count {
+            what: "weights",
+            found: weights.len(),
+            nu: n,
+            nv: 1,
+        });
+    }
+    if let Some(i) = weights.iter().position(|&w| !crate::limits::weight_ok(w)) {
+        return Err(NurbsError::Weight(i, weights[i]));
+    }
+    Ok(weights)
 }
 
 /// (w x, w y, w z, w) of each control point.
