@@ -228,14 +228,14 @@ pub fn parse_size(s: &str) -> Result<u64, String> {
     let value: f64 = number.trim().parse().map_err(|_| {
         format!(
             "`{}` is not a size such as 500M or 8G",
-            crate::table::short(t)
+            pssurf::text::cut(t)
         )
     })?;
     let bytes = value * unit as f64;
     if !(1.0..1e19).contains(&bytes) {
         return Err(format!(
             "`{}` is not a size between 1 byte and 8E",
-            crate::table::short(t)
+            pssurf::text::cut(t)
         ));
     }
     Ok(bytes as u64)

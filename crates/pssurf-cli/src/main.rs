@@ -153,6 +153,9 @@ fn main() -> ExitCode {
         Command::Denoise(a) => commands::denoise::run(a),
         Command::Wavelet(a) => commands::wavelet::run(a),
         Command::Curvature(a) => commands::curvature::run(a),
+        Command::Trace(a) if a.curvature_lines || a.asymptotic || a.geodesic => {
+            commands::trace_lines::run(a)
+        }
         Command::Trace(a) => commands::trace::run(a),
         Command::Probe(a) => commands::probe::run(a),
         Command::Import(a) => commands::import::run(a),

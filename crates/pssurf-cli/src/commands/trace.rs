@@ -144,7 +144,8 @@ fn parse_level(text: &str) -> Result<LevelRequest> {
     Ok(LevelRequest { field, levels })
 }
 
-/// Runs `pssurf trace`.
+/// Runs `pssurf trace --level` (the field-line and geodesic modes are
+/// `trace_lines::run`).
 pub fn run(args: &TraceArgs) -> Result<()> {
     let step = args.step.unwrap_or(0.125);
     if !(step > 0.0 && step <= 1.0) {
@@ -152,9 +153,6 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     }
     if args.max_points == 0 || args.max_points > 100_000_000 {
         bail!("--max-points must be from 1 to 100000000");
-    }
-    if args.curvature_lines || args.asymptotic || args.geodesic {
-        return super::trace_lines::run(args);
     }
     let requests: Vec<LevelRequest> = args
         .level

@@ -18,6 +18,9 @@ use super::trace::{Family, PALETTE, TraceArgs, write_curves};
 
 /// Runs the field-line and geodesic modes of `pssurf trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
+    if args.max_points == 0 || args.max_points > 100_000_000 {
+        bail!("--max-points must be from 1 to 100000000");
+    }
     if let Some(l) = args.length
         && !(l > 0.0 && l.is_finite())
     {

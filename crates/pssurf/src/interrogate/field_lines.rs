@@ -23,8 +23,8 @@ use thiserror::Error;
 
 use super::continuation::distance_to_segment;
 use super::curvature::Curvature;
+use super::curve::SurfaceCurve;
 use super::ode::{Flow, Halt, Integrator, State};
-use super::zero_set::SurfaceCurve;
 use crate::surface::{Cursor, ParametricSurface};
 
 /// Which line field to follow.

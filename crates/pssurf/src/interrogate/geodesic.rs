@@ -27,9 +27,9 @@ use std::collections::BinaryHeap;
 use nalgebra::{Matrix2, Point2, Vector2, Vector3};
 use thiserror::Error;
 
+use super::curve::SurfaceCurve;
 use super::field_lines::domain_diameter;
 use super::ode::{Flow, Halt, Integrator, State};
-use super::zero_set::SurfaceCurve;
 use crate::surface::{Cursor, ParametricSurface};
 
 /// How geodesics are integrated. Tolerances are relative to the domain's diagonal (for the

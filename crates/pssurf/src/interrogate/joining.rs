@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use nalgebra::{Point2, Vector3};
 
 use super::continuation::ConvexPolygon;
-use super::zero_set::{LevelGap, SurfaceCurve, ZeroSet};
+use super::curve::{LevelGap, SurfaceCurve, ZeroSet};
 
 /// The pieces' edges with welded corners: which pieces own each edge.
 pub(crate) struct Edges {

@@ -7,6 +7,7 @@
 
 pub(crate) mod continuation;
 pub mod curvature;
+pub mod curve;
 pub mod even_lines;
 pub mod fairness;
 pub mod field;
