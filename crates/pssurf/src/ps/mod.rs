@@ -7,6 +7,7 @@ pub mod energy;
 pub mod net;
 pub mod nurps;
 pub mod ps_triangles;
+pub mod quadrics;
 pub mod refinement;
 pub mod spline;
 
