@@ -745,3 +745,94 @@ fn the_net_stencil_transpose_is_its_adjoint() {
     }
     assert!(checked > 100, "{checked}");
 }
+
+/// Thesis 3.4.1–3.4.2: the tangent point s(V_i) is the combination of the control points with
+/// the shape parameters α̃, the control triangle is tangent there (Theorem 3.2), and moving
+/// the tangent point by (3.72) puts it where asked, keeps w_{s_i} and the tangency, and
+/// changes nothing outside the vertex's molecule.
+#[test]
+fn shape_parameters_move_the_tangent_point_inside_the_control_triangle() {
+    use crate::surface::ParametricSurface;
+    let mut r = rng(48);
+    let (mut checked, mut skipped) = (0, 0);
+    for (name, basis) in bases(12) {
+        let t = basis.triangulation();
+        let n = t.vertex_count();
+        let pts = random_vec3_triples(&mut r, n);
+        let weights: Vec<[f64; 3]> = (0..n)
+            .map(|_| std::array::from_fn(|_| uniform(&mut r, 0.3, 3.0)))
+            .collect();
+        let mut s = Nurps::new(basis.clone(), pts, weights).unwrap();
+        for _ in 0..5 {
+            let i = (uniform(&mut r, 0.0, 1.0) * n as f64) as usize % n;
+            // V_i on an edge of its PS-triangle: the tangent point stays on that edge.
+            let on_edge = basis.alpha(i).map(|a| a <= 1e-9);
+            if on_edge.iter().filter(|&&e| e).count() > 1 {
+                skipped += 1; // V_i is a corner of its PS-triangle: the point cannot move
+                continue;
+            }
+            checked += 1;
+            let combine = |s: &Nurps<Vector3<f64>>, a: [f64; 3]| -> Vector3<f64> {
+                (0..3).map(|j| s.points()[i][j] * a[j]).sum()
+            };
+            let at = t.vertex(i);
+            let here = ParametricSurface::jet(&s, at).unwrap().jet;
+            assert!(
+                (here.value - combine(&s, s.shape_parameters(i))).norm() < 1e-12,
+                "{name}"
+            );
+            let ws = |s: &Nurps<Vector3<f64>>| -> f64 {
+                (0..3).map(|j| basis.alpha(i)[j] * s.weights()[i][j]).sum()
+            };
+            let before_ws = ws(&s);
+            let far = t.vertex((i + n / 2) % n);
+            let far_point = ParametricSurface::point(&s, far).unwrap();
+            // A random target strictly inside.
+            let mut b = random_bary(&mut r).map(|x| 0.1 + 0.7 * x);
+            for (x, e) in b.iter_mut().zip(on_edge) {
+                if e {
+                    *x = 0.0;
+                }
+            }
+            let target = b.map(|x| x / b.iter().sum::<f64>());
+            s.set_shape_parameters(i, target).unwrap();
+            let moved = ParametricSurface::jet(&s, at).unwrap().jet;
+            assert!((moved.value - combine(&s, target)).norm() < 1e-12, "{name}");
+            assert_near!(ws(&s), before_ws, 1e-12);
+            for (k, got) in s.shape_parameters(i).iter().enumerate() {
+                assert_near!(*got, target[k], 1e-12);
+            }
+            // Theorem 3.2: the control points lie in the tangent plane at s(V_i).
+            let normal = moved.dx.cross(&moved.dy).normalize();
+            for c in &s.points()[i] {
+                let off = (c - moved.value).dot(&normal).abs();
+                assert!(
+                    off < 1e-10 * (1.0 + (c - moved.value).norm()),
+                    "{name}: {off:e}, alpha {:?}, target {target:?}",
+                    basis.alpha(i)
+                );
+            }
+            // Outside the molecule nothing changed.
+            if !t
+                .molecule(i)
+                .iter()
+                .any(|&tr| t.triangle(tr as usize).contains(&((i + n / 2) % n)))
+            {
+                assert_eq!(
+                    ParametricSurface::point(&s, far).unwrap(),
+                    far_point,
+                    "{name}"
+                );
+            }
+        }
+        // A target on the boundary or not summing to 1 is refused.
+        if let Some(i) = (0..n).find(|&i| basis.alpha(i).iter().all(|&a| a > 1e-9)) {
+            assert!(s.set_shape_parameters(i, [0.0, 0.5, 0.5]).is_err());
+        }
+        assert!(s.set_shape_parameters(0, [0.4, 0.4, 0.4]).is_err());
+    }
+    assert!(
+        checked >= 20 && skipped * 2 < checked,
+        "{checked} checked, {skipped} skipped"
+    );
+}
