@@ -443,6 +443,11 @@ fn every_kind_goes_through_every_interrogation_command() {
             serde_json::from_str(&ok(&["info", &file, "--json"])).unwrap();
         let kind = info["kind"].as_str().unwrap();
         assert!(name.ends_with(kind), "{name}: {kind}");
+        if name == "nurbs" {
+            assert_eq!(info["nurbs"]["degrees"], serde_json::json!([2, 2]));
+            assert_eq!(info["nurbs"]["net"], serde_json::json!([3, 3]));
+            assert_eq!(info["nurbs"]["rational"], true);
+        }
         // Curvature: the closed form wherever the grid point is in the domain.
         let c = d.path().join(format!("{name}.npy"));
         ok(&[

@@ -56,6 +56,20 @@ struct Info {
     ps: Option<PsInfo>,
     degree: usize,
     uniform: Option<UniformInfo>,
+    nurbs: Option<NurbsInfo>,
+}
+
+/// A NURBS surface's structure.
+#[derive(Serialize)]
+struct NurbsInfo {
+    /// Degrees [p, q].
+    degrees: [usize; 2],
+    /// The net's size [n_u, n_v].
+    net: [usize; 2],
+    /// Non-empty knot spans in u and v.
+    spans: [usize; 2],
+    /// Whether it has weights.
+    rational: bool,
 }
 
 /// The PS structure: triangulation, refinement, PS-triangles.
@@ -188,6 +202,18 @@ fn collect(s: &Surface, file: String) -> Info {
             .then(|| stats(points.iter().map(|p| p.weight).collect())),
         ps: s.ps_basis().map(|b| ps_info(b)),
         degree: s.piece_degree(),
+        nurbs: match s {
+            Surface::Nurbs(n) => Some(NurbsInfo {
+                degrees: n.degree(),
+                net: n.counts(),
+                spans: [
+                    n.knot_vectors()[0].spans().len(),
+                    n.knot_vectors()[1].spans().len(),
+                ],
+                rational: n.is_rational(),
+            }),
+            _ => None,
+        },
         uniform: s.uniform().map(uniform_info),
     }
 }
@@ -244,11 +270,24 @@ fn print_table(info: &Info) -> Result<()> {
         outln!("basis functions      {}", ps.basis_functions)?;
         outln!("split points         {}", ps.split)?;
     }
-    outln!(
-        "pieces               {} of degree {}",
-        info.pieces,
-        info.degree
-    )?;
+    match &info.nurbs {
+        Some(n) => outln!(
+            "pieces               {} knot rectangles ({} × {}) of degrees {} × {}; net {} × {}{}",
+            info.pieces,
+            n.spans[0],
+            n.spans[1],
+            n.degrees[0],
+            n.degrees[1],
+            n.net[0],
+            n.net[1],
+            if n.rational { ", rational" } else { "" }
+        )?,
+        None => outln!(
+            "pieces               {} of degree {}",
+            info.pieces,
+            info.degree
+        )?,
+    }
     let (dlo, dhi) = (info.domain_min, info.domain_max);
     outln!(
         "domain               [{}, {}] × [{}, {}], area {}{}",
