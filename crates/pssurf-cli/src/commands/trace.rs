@@ -147,6 +147,7 @@ fn parse_level(text: &str) -> Result<LevelRequest> {
 /// Runs `pssurf trace --level` (the field-line and geodesic modes are
 /// `trace_lines::run`).
 pub fn run(args: &TraceArgs) -> Result<()> {
+    check_output(args)?;
     let step = args.step.unwrap_or(0.125);
     if !(step > 0.0 && step <= 1.0) {
         bail!("--step must be in (0, 1]");
@@ -304,6 +305,20 @@ fn write(
 }
 
 /// Writes curves to `--output` as CSV, OBJ or a domain SVG (each curve in its colour).
+/// Refuses an `--output` whose extension `pssurf trace` cannot write, before any work.
+pub(crate) fn check_output(args: &TraceArgs) -> Result<()> {
+    let ext = args
+        .output
+        .as_ref()
+        .and_then(|p| p.extension())
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        None | Some("csv" | "obj" | "svg") => Ok(()),
+        Some(other) => bail!("cannot write .{other}: use .csv, .obj or .svg"),
+    }
+}
+
 pub(crate) fn write_curves(
     args: &TraceArgs,
     surface: &pssurf::surface::Surface,

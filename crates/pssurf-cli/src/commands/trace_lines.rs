@@ -18,6 +18,7 @@ use super::trace::{Family, PALETTE, TraceArgs, write_curves};
 
 /// Runs the field-line and geodesic modes of `pssurf trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
+    super::trace::check_output(args)?;
     if args.max_points == 0 || args.max_points > 100_000_000 {
         bail!("--max-points must be from 1 to 100000000");
     }
@@ -44,8 +45,9 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         }
     };
     let step = args.step.unwrap_or(FieldLineOptions::default().max_step);
-    if !(step > 0.0 && step <= 1.0) {
-        bail!("--step must be in (0, 1]");
+    let smallest = FieldLineOptions::default().min_step;
+    if !(step >= smallest && step <= 1.0) {
+        bail!("--step must be from {smallest} (the smallest step) to 1");
     }
     let opts = FieldLineOptions {
         max_step: step,

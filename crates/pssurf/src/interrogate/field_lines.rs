@@ -171,8 +171,10 @@ pub enum FieldLineError {
         /// Why (an umbilic, a non-hyperbolic point, a singular point).
         why: &'static str,
     },
-    /// An option is not a positive finite number.
-    #[error("field-line options must be positive and finite (length may be infinite)")]
+    /// An option is not a positive finite number, or the largest step is below the smallest.
+    #[error(
+        "field-line options must be positive and finite (length may be infinite), the largest step at least the smallest (1e-6 of the domain)"
+    )]
     BadOptions,
 }
 
@@ -267,6 +269,7 @@ pub(crate) fn trace_guarded<S: ParametricSurface + ?Sized>(
     if !(positive(opts.tolerance)
         && positive(opts.min_step)
         && positive(opts.max_step)
+        && opts.max_step >= opts.min_step
         && opts.length > 0.0
         && opts.umbilic_tolerance >= 0.0
         && opts.max_points > 0)

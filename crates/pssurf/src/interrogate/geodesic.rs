@@ -165,6 +165,8 @@ pub fn geodesic<S: ParametricSurface + ?Sized>(
         .jet_with(start, &mut cursor)
         .map_err(|_| GeodesicError::Outside(start.x, start.y))?
         .jet;
+    // Only the direction matters: scale it first so that huge components cannot overflow.
+    let direction = direction / direction.amax();
     let speed = (j.dx * direction.x + j.dy * direction.y).norm();
     if !(speed > 0.0 && speed.is_finite()) {
         return Err(GeodesicError::Singular(start.x, start.y));

@@ -249,6 +249,19 @@ fn geodesics_on_a_sphere_are_great_circles() {
                 "off the great circle"
             );
         }
+        // Only the direction matters, however large its components.
+        let huge = geodesic(
+            &s,
+            start,
+            dir * 1e307,
+            0.6 * rad,
+            &GeodesicOptions::default(),
+        )
+        .unwrap();
+        assert!(
+            (huge.curve.points.last().unwrap() - g.curve.points.last().unwrap()).norm()
+                < 1e-10 * rad
+        );
         if g.end == GeodesicEnd::Length {
             // The end is where the great circle is after the arc length travelled.
             let theta = g.length / rad;
@@ -292,6 +305,13 @@ fn a_sphere_is_umbilic_everywhere() {
     assert!(u.points.is_empty());
     let err = trace_field_line(&s, LineFamily::Curvature1, Point2::new(0.0, 0.0), &tight());
     assert!(matches!(err, Err(FieldLineError::Undefined { .. })));
+    // A largest step below the smallest is refused, not a panic.
+    let tiny = FieldLineOptions {
+        max_step: 1e-300,
+        ..tight()
+    };
+    let err = trace_field_line(&s, LineFamily::Curvature1, Point2::new(0.1, 0.0), &tiny);
+    assert_eq!(err, Err(FieldLineError::BadOptions));
 }
 
 #[test]
