@@ -3,7 +3,9 @@
 //! Bézier nets, evaluation, derivatives, integration, and the rational NURPS form.
 
 pub mod basis;
+pub mod design;
 pub mod energy;
+pub mod from_bezier;
 pub mod net;
 pub mod nurps;
 pub mod ps_triangles;
@@ -12,6 +14,7 @@ pub mod refinement;
 pub mod spline;
 
 pub use basis::{PsBasis, SubLocation};
+pub use design::Degenerate;
 pub use energy::{Energy, PieceHessian};
 pub use nurps::Nurps;
 pub use ps_triangles::{PsTriangleChoice, PsTriangleQuality};

@@ -25,9 +25,6 @@ pub struct Nurps<V> {
     nets: Vec<[Weighted<V>; NET_LEN]>,
 }
 
-/// Barycentric coordinates of V_i in its PS-triangle at most this are on the edge.
-const ON_EDGE: f64 = 1e-9;
-
 impl<V: Vector> Nurps<V> {
     /// A NURPS surface from control points and weights (one triple of each per vertex);
     /// every point must be finite and every weight finite and positive.
@@ -115,44 +112,17 @@ impl<V: Vector> Nurps<V> {
     }
 
     /// The shape parameters of vertex i (thesis 3.4.2): the barycentric coordinates α̃_{i,j} of
-    /// the tangent point s(V_i) with respect to its control triangle,
-    /// α̃_{i,j} = α_{i,j} w_{i,j} / w_{s_i} with w_{s_i} = Σ_j α_{i,j} w_{i,j} (3.67).
+    /// the tangent point s(V_i) in its control triangle ([`super::design::shape_parameters`]).
     pub fn shape_parameters(&self, i: usize) -> [f64; 3] {
-        let alpha = self.basis.alpha(i);
-        let w = self.weights[i];
-        let ws: f64 = (0..3).map(|j| alpha[j] * w[j]).sum();
-        std::array::from_fn(|j| alpha[j] * w[j] / ws)
+        super::design::shape_parameters(self.basis.alpha(i), self.weights[i])
     }
 
     /// Moves the tangent point of vertex i to the barycentric coordinates `target` in its
-    /// control triangle, keeping its weight w_{s_i}, by (3.72):
-    /// w′_{i,j} = α̃′_{i,j} w_{s_i} / α_{i,j}. Where V_i lies on an edge of its PS-triangle
-    /// (α_{i,j} ≤ 1e-9, common with the optimal PS-triangles, whose boundary passes through V_i)
-    /// the tangent point stays on that edge: `target[j]` must then be 0, and w_{i,j} is kept.
-    /// The other coordinates must be positive and all must sum to 1.
+    /// control triangle, keeping its weight w_{s_i}, by (3.72)
+    /// ([`super::design::weights_for_shape`] says which targets are possible).
     pub fn set_shape_parameters(&mut self, i: usize, target: [f64; 3]) -> Result<(), PsError> {
-        let alpha = self.basis.alpha(i);
-        let w = self.weights[i];
-        let ws: f64 = (0..3).map(|j| alpha[j] * w[j]).sum();
-        let sum: f64 = target.iter().sum();
-        let mut weights = w;
-        for j in 0..3 {
-            // α_{i,j} is computed, so V_i exactly on an edge comes out as ~1e-13: below
-            // ON_EDGE it is taken as on the edge (a weight of α̃/α would be absurdly large).
-            let fits = if alpha[j] > ON_EDGE {
-                weights[j] = target[j] * ws / alpha[j];
-                target[j] > 0.0 && crate::limits::weight_ok(weights[j])
-            } else {
-                target[j] == 0.0
-            };
-            if !fits || !((sum - 1.0).abs() < 1e-12) {
-                return Err(PsError::InvalidWeight {
-                    vertex: i,
-                    index: j,
-                    weight: weights[j],
-                });
-            }
-        }
+        let weights =
+            super::design::weights_for_shape(i, self.basis.alpha(i), self.weights[i], target)?;
         self.set_vertices(&[(i, self.points[i], weights)]);
         Ok(())
     }

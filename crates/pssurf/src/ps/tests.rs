@@ -79,7 +79,7 @@ fn random_hermite(r: &mut ChaCha8Rng, n: usize) -> Vec<Hermite<f64>> {
         .collect()
 }
 
-fn bases(seed: u64) -> Vec<(&'static str, Arc<PsBasis>)> {
+pub(crate) fn bases(seed: u64) -> Vec<(&'static str, Arc<PsBasis>)> {
     catalogue(seed)
         .into_iter()
         .map(|(name, t)| (name, Arc::new(PsBasis::optimal(t).expect(name))))
