@@ -671,9 +671,15 @@ impl App {
         self.status = format!("deleted {name}");
     }
 
-    fn add(&mut self, object: SceneObject) {
-        let name = object.name.clone();
-        self.add_objects(vec![object], "new surface");
+    fn add(&mut self, objects: Vec<SceneObject>) {
+        let name = match objects.as_slice() {
+            [one] => one.name.clone(),
+            [first, ..] if !first.group.is_empty() => {
+                format!("{} ({} patches)", first.group, objects.len())
+            }
+            _ => format!("{} objects", objects.len()),
+        };
+        self.add_objects(objects, "new surface");
         self.status = format!("created {name}");
     }
 
@@ -876,7 +882,9 @@ impl App {
             .default_size(LEFT_WIDTH)
             .size_range(LEFT_WIDTH * 0.8..=LEFT_WIDTH * 2.0)
             .show(ui, |ui| {
-                egui::ScrollArea::both().show(ui, |ui| {
+                // Not shrunk to the content: a floating scroll bar at the bottom of short
+                // content would cover the lower half of its last row of buttons.
+                egui::ScrollArea::both().auto_shrink(false).show(ui, |ui| {
                     views.scene_tree.ui(ui, &mut cx);
                     ui.separator();
                     views.properties.ui(ui, &mut cx);
@@ -887,7 +895,9 @@ impl App {
             .default_size(RIGHT_WIDTH)
             .size_range(RIGHT_WIDTH * 0.8..=RIGHT_WIDTH * 2.0)
             .show(ui, |ui| {
-                egui::ScrollArea::both().show(ui, |ui| tools(ui, views, &mut cx));
+                egui::ScrollArea::both()
+                    .auto_shrink(false)
+                    .show(ui, |ui| tools(ui, views, &mut cx));
             });
         *layout = Layout {
             left: left.response.rect,

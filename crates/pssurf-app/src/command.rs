@@ -48,6 +48,19 @@ pub enum Shape {
     Formula,
     /// z = a x² + b xy + c y².
     Quadric,
+    /// The cylinder as eight exact NURPS patches (thesis 3.6.1).
+    Cylinder,
+    /// The cone as six exact NURPS patches (thesis 3.6.2).
+    Cone,
+    /// The sphere as 2n exact NURPS patches with two thin open bands (thesis 3.6.3).
+    Sphere,
+}
+
+impl Shape {
+    /// Whether the shape is a closed quadric made of NURPS patches (not a UPS graph).
+    pub fn is_solid_quadric(self) -> bool {
+        matches!(self, Shape::Cylinder | Shape::Cone | Shape::Sphere)
+    }
 }
 
 /// What to export.
@@ -118,8 +131,8 @@ pub enum Command {
     ToggleVisible(Vec<usize>),
     /// Delete an object.
     Delete(usize),
-    /// Add an object and select it.
-    Add(SceneObject),
+    /// Add objects as one undoable edit and select the first.
+    Add(Vec<SceneObject>),
     /// Replace an object's surface (a panel's result) as one undoable edit.
     ReplaceSurface {
         /// The object's index.

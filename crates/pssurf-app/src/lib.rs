@@ -36,6 +36,7 @@ pub mod properties;
 pub mod runtime;
 pub mod scene;
 pub mod scene_tree;
+pub mod shape_tools;
 pub mod state;
 pub mod view3d;
 pub mod view_settings;

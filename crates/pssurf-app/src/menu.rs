@@ -138,6 +138,17 @@ fn new_menu(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
             "z = a x² + b xy + c y², reproduced exactly",
             Shape::Quadric,
         ),
+        (
+            "Cylinder…",
+            "A closed cylinder of 8 exact NURPS patches",
+            Shape::Cylinder,
+        ),
+        ("Cone…", "A cone of 6 exact NURPS patches", Shape::Cone),
+        (
+            "Sphere…",
+            "A sphere of exact NURPS patches with two thin open bands",
+            Shape::Sphere,
+        ),
     ] {
         if ui.button(label).on_hover_text(tip).clicked() {
             cx.emit(Command::OpenNewSurface(shape));

@@ -77,6 +77,7 @@ impl Properties {
         if c.functional {
             ui.weak("A functional surface: only the heights of its control points can change.");
         }
+        crate::shape_tools::ui(ui, cx, i, v, &current);
         if changed && c != current {
             self.typed = Some(Typed {
                 object: i,

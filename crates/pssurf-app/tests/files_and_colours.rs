@@ -121,7 +121,7 @@ fn a_surface_document_that_grew_a_second_object_is_saved_as_a_scene_not_silently
     let (path, app) = surface_document(dir.path());
     let mut h = harness(app);
     let second = SceneObject::new("wave", pssurf_app::demo::wave_patch(2));
-    h.state_mut().apply(Command::Add(second));
+    h.state_mut().apply(Command::Add(vec![second]));
     h.run_steps(2);
     // Placed beside the first, not on it.
     let app = h.state();
@@ -436,6 +436,20 @@ fn no_value_typed_into_any_number_field_breaks_the_application() {
             Box::new(|h| {
                 h.state_mut()
                     .apply(Command::OpenNewSurface(pssurf_app::command::Shape::Quadric))
+            }),
+        ),
+        (
+            "new sphere",
+            Box::new(|h| {
+                h.state_mut()
+                    .apply(Command::OpenNewSurface(pssurf_app::command::Shape::Sphere))
+            }),
+        ),
+        (
+            "new cone",
+            Box::new(|h| {
+                h.state_mut()
+                    .apply(Command::OpenNewSurface(pssurf_app::command::Shape::Cone))
             }),
         ),
         (

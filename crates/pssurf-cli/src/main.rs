@@ -85,7 +85,8 @@ enum Command {
     Eval(commands::eval::EvalArgs),
     /// Show what a surface file holds: kind, counts, domain, PS-triangle quality, validity.
     Info(commands::info::InfoArgs),
-    /// Create a surface: `pssurf new ups` makes a uniform PS surface on a lattice polygon.
+    /// Create a surface: `pssurf new ups` makes a uniform PS surface on a lattice polygon;
+    /// `pssurf new cylinder|cone|sphere` an exact quadric as NURPS patches.
     #[command(subcommand)]
     New(commands::new::NewWhat),
     /// Subdivide a UPS surface: the same surface on a finer triangulation.

@@ -983,3 +983,50 @@ fn import_writes_a_scene_of_nurbs_surfaces_that_info_and_plot_read() {
         assert!(!out.exists());
     }
 }
+
+/// `pssurf new cylinder|cone|sphere`: scenes of valid NURPS (or rational Bézier) patches, as
+/// many as the construction has; bad sizes are one line each.
+#[test]
+fn new_quadrics_write_scenes_of_exact_patches() {
+    let d = tmp();
+    for (args, count, kind) in [
+        (
+            vec!["cylinder", "--radius", "2", "--height", "3"],
+            8,
+            "nurps",
+        ),
+        (vec!["cone", "--form", "bezier"], 6, "rational_bezier"),
+        (vec!["sphere", "--sectors", "12"], 24, "nurps"),
+    ] {
+        let out = d.path().join(format!("{}.json", args[0]));
+        let path = s(&out);
+        let mut all = vec!["new"];
+        all.extend(&args);
+        all.extend(["-o", &path]);
+        let report = ok_report(&all);
+        assert!(report.contains(&format!("of {count} ")), "{report}");
+        let info: serde_json::Value =
+            serde_json::from_str(&ok(&["info", &s(&out), "--json"])).unwrap();
+        let objects = info.as_array().unwrap();
+        assert_eq!(objects.len(), count, "{args:?}");
+        assert!(
+            objects
+                .iter()
+                .all(|o| o["kind"] == kind && o["valid"] == true),
+            "{args:?}"
+        );
+        if args[0] == "sphere" {
+            // r sin²(π/12) / (cos²(π/12) + 1) = 0.0669873 / 1.9330127 = 0.034654…
+            assert!(report.contains("0.03465 high"), "{report}");
+        }
+    }
+    for args in [
+        vec!["new", "cylinder", "--radius", "0", "-o", "x.json"],
+        vec!["new", "cone", "--height", "nan", "-o", "x.json"],
+        vec!["new", "sphere", "--radius", "1e300", "-o", "x.json"],
+        vec!["new", "sphere", "--sectors", "2", "-o", "x.json"],
+    ] {
+        let msg = fails(&args);
+        assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");
+    }
+}

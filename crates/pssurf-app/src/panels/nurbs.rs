@@ -58,7 +58,7 @@ impl Panel for NurbsPanel {
                         SceneObject::new(format!("{} (UPS)", o.name), Surface::from(a.surface));
                     object.group = o.group.clone();
                     object.transform = o.transform;
-                    cx.emit(Command::Add(object));
+                    cx.emit(Command::Add(vec![object]));
                     cx.status(format!(
                         "approximated {} by a {} × {} UPS surface: max deviation {:.3e}, RMS {:.3e}",
                         o.name, a.counts[0], a.counts[1], a.max_deviation, a.rms_deviation
