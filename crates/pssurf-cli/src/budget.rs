@@ -191,6 +191,23 @@ pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
     Ok(pssurf::io::load_limited(path, max_bytes)?)
 }
 
+/// Loads a curve file within the memory budget (as [`load_surface`]).
+pub fn load_curve(path: &Path) -> Result<pssurf::nurbs::NurbsCurve> {
+    if let Ok(meta) = std::fs::metadata(path)
+        && meta.is_file()
+    {
+        Estimate {
+            what: format!("loading {}", path.display()),
+            makes: format!("a file of {}", Bytes(meta.len())),
+            memory: load_memory(meta.len()),
+            output: 0,
+        }
+        .check()?;
+    }
+    let max_bytes = Budget::current().memory.saturating_sub(base_memory()) / 8;
+    Ok(pssurf::io::load_curve_limited(path, max_bytes)?)
+}
+
 /// The machine's memory in bytes: the smaller of the physical memory and this process's
 /// control-group limit (Linux), or `None` where it cannot be read.
 pub fn machine_memory() -> Option<u64> {

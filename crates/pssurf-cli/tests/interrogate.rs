@@ -1030,3 +1030,24 @@ fn new_quadrics_write_scenes_of_exact_patches() {
         assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");
     }
 }
+
+/// `pssurf info` on a curve file: a rational quadratic quarter circle written without knots
+/// (a Bézier curve) has length π/2; a surface command names it a curve file.
+#[test]
+fn info_reads_curve_files() {
+    let d = tmp();
+    let path = d.path().join("arc.json");
+    std::fs::write(
+        &path,
+        r#"{"format":"pssurf","version":1,"kind":"curve","curve":{"degree":2,"points":[[2,0,0],[2,2,0],[0,2,0]],"weights":[1,0.7071067811865476,1]}}"#,
+    )
+    .unwrap();
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&["info", &s(&path), "--json"])).unwrap();
+    assert_eq!(info["kind"], "curve");
+    assert_eq!(info["degree"], 2);
+    let length = info["length"].as_f64().unwrap();
+    assert!((length - std::f64::consts::PI).abs() < 1e-13, "{length}");
+    let msg = fails(&["plot", &s(&path), "-o", "x.png"]);
+    assert!(msg.contains("a curve file"), "{msg}");
+}

@@ -1,4 +1,4 @@
-//! `pssurf info`: what a surface file holds.
+//! `pssurf info`: what a surface, scene or curve file holds.
 
 use std::path::PathBuf;
 
@@ -11,7 +11,7 @@ use serde::Serialize;
 /// Arguments of `pssurf info`.
 #[derive(clap::Args, Debug)]
 pub struct InfoArgs {
-    /// The surface file.
+    /// The surface, scene or curve file.
     #[arg(value_name = "SURF.json")]
     pub surface: PathBuf,
     /// Print JSON instead of a table.
@@ -96,6 +96,9 @@ struct UniformInfo {
 
 /// Runs `pssurf info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
+    if is_curve_file(&args.surface) {
+        return curve_info(args);
+    }
     if let Some(objects) = scene_objects(&args.surface)? {
         let infos: Vec<Info> = objects
             .iter()
@@ -125,6 +128,102 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     } else {
         print_table(&info)?;
     }
+    Ok(())
+}
+
+/// What a curve file reports.
+#[derive(Serialize)]
+struct CurveInfo {
+    file: String,
+    valid: bool,
+    kind: &'static str,
+    degree: usize,
+    control_points: usize,
+    rational: bool,
+    knots: usize,
+    spans: usize,
+    parameter_domain: [f64; 2],
+    control_min: [f64; 3],
+    control_max: [f64; 3],
+    /// The arc length (Gauss–Legendre with 16 nodes per knot span).
+    length: f64,
+}
+
+/// Whether the file's first 4 KiB name it a pssurf curve file.
+fn is_curve_file(path: &std::path::Path) -> bool {
+    use std::io::Read;
+    let mut head = Vec::new();
+    if let Ok(f) = std::fs::File::open(path) {
+        let _ = f.take(4096).read_to_end(&mut head);
+    }
+    let head = String::from_utf8_lossy(&head);
+    head.contains(&format!("\"{}\"", pssurf::io::CURVE_KIND)) && head.contains("\"kind\"")
+}
+
+/// `pssurf info` on a curve file.
+fn curve_info(args: &InfoArgs) -> Result<()> {
+    let c = crate::budget::load_curve(&args.surface)?;
+    let k = c.knot_vector();
+    let pts = c.points();
+    let lo = pts.iter().fold(pts[0], |a, p| a.inf(p));
+    let hi = pts.iter().fold(pts[0], |a, p| a.sup(p));
+    let gauss = pssurf::quadrature::gauss_legendre(16);
+    let knots = k.knots();
+    let length: f64 = (0..knots.len() - 1)
+        .filter(|&i| knots[i + 1] > knots[i])
+        .map(|i| {
+            let (a, b) = (knots[i], knots[i + 1]);
+            gauss
+                .iter()
+                .map(|&(x, w)| {
+                    let d = c.derivatives(a + x * (b - a)).map_or(0.0, |d| d[1].norm());
+                    w * d * (b - a)
+                })
+                .sum::<f64>()
+        })
+        .sum();
+    let (a, b) = c.domain();
+    let info = CurveInfo {
+        file: args.surface.display().to_string(),
+        valid: true,
+        kind: "curve",
+        degree: k.degree(),
+        control_points: pts.len(),
+        rational: c.is_rational(),
+        knots: knots.len(),
+        spans: k.spans().len(),
+        parameter_domain: [a, b],
+        control_min: lo.into(),
+        control_max: hi.into(),
+        length,
+    };
+    if args.json {
+        outln!("{}", serde_json::to_string_pretty(&info)?)?;
+        return Ok(());
+    }
+    outln!("file                 {}", info.file)?;
+    outln!("status               valid (every check passed on loading)")?;
+    outln!(
+        "kind                 curve ({}NURBS curve of degree {})",
+        if info.rational { "rational " } else { "" },
+        info.degree
+    )?;
+    outln!(
+        "control points       {}: x [{}, {}], y [{}, {}], z [{}, {}]",
+        info.control_points,
+        lo.x,
+        hi.x,
+        lo.y,
+        hi.y,
+        lo.z,
+        hi.z
+    )?;
+    outln!(
+        "knots                {} ({} spans) on [{a}, {b}]",
+        info.knots,
+        info.spans
+    )?;
+    outln!("length               {}", info.length)?;
     Ok(())
 }
 

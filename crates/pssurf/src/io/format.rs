@@ -20,7 +20,7 @@ use crate::ups::{Lattice, LatticePolygon, Ups, UpsGrid, fixed_ps_triangle};
 pub const FORMAT_VERSION: u32 = 1;
 
 /// The format's name, the value of the `format` field.
-const FORMAT_NAME: &str = "pssurf";
+pub(crate) const FORMAT_NAME: &str = "pssurf";
 
 /// What is wrong with a file's contents; `at` is a JSON path such as `domain.triangles[5]`.
 #[derive(Debug, Error, PartialEq)]
@@ -73,9 +73,10 @@ pub enum FileError {
 }
 
 #[derive(Deserialize)]
-struct Header {
+pub(crate) struct Header {
     format: Option<String>,
     version: Option<u64>,
+    kind: Option<serde_json::Value>,
 }
 
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -206,7 +207,7 @@ impl FileV1 {
     }
 }
 
-fn syntax(e: serde_json::Error) -> FormatError {
+pub(crate) fn syntax(e: serde_json::Error) -> FormatError {
     FormatError::Syntax {
         line: e.line(),
         column: e.column(),
@@ -222,7 +223,7 @@ fn strip_position(s: &str) -> String {
     }
 }
 
-fn invalid(at: impl Into<String>, message: impl std::fmt::Display) -> FormatError {
+pub(crate) fn invalid(at: impl Into<String>, message: impl std::fmt::Display) -> FormatError {
     FormatError::Invalid {
         at: at.into(),
         message: message.to_string(),
@@ -232,17 +233,28 @@ fn invalid(at: impl Into<String>, message: impl std::fmt::Display) -> FormatErro
 /// Reads a surface from the text of a file, validating everything; the error names the
 /// first problem and where it is.
 pub fn from_json_str(text: &str) -> Result<Surface, FormatError> {
+    let header = check_header(text)?;
+    if header.kind.as_ref().and_then(|k| k.as_str()) == Some(super::curve_file::CURVE_KIND) {
+        return Err(invalid(
+            "kind",
+            "\"curve\": a curve file, not a surface (`pssurf info` reads it)",
+        ));
+    }
+    let file: FileV1 = serde_json::from_str(text).map_err(syntax)?;
+    build(file)
+}
+
+/// Checks the `format` and `version` fields common to surface and curve files.
+pub(crate) fn check_header(text: &str) -> Result<Header, FormatError> {
     let header: Header = serde_json::from_str(text).map_err(syntax)?;
     if header.format.as_deref() != Some(FORMAT_NAME) {
         return Err(FormatError::NotPssurf);
     }
     match header.version {
-        Some(v) if v == FORMAT_VERSION as u64 => {}
-        Some(v) => return Err(FormatError::UnsupportedVersion(v)),
-        None => return Err(invalid("version", "missing field `version`")),
+        Some(v) if v == FORMAT_VERSION as u64 => Ok(header),
+        Some(v) => Err(FormatError::UnsupportedVersion(v)),
+        None => Err(invalid("version", "missing field `version`")),
     }
-    let file: FileV1 = serde_json::from_str(text).map_err(syntax)?;
-    build(file)
 }
 
 /// The one builder: check which fields the kind allows, read the structure (a general basis,
@@ -923,6 +935,16 @@ pub fn load(path: &Path) -> Result<Surface, FileError> {
 /// endless stream such as `/dev/zero`) is refused after reading that much, so that memory
 /// stays bounded whatever `path` is.
 pub fn load_limited(path: &Path, max_bytes: u64) -> Result<Surface, FileError> {
+    let text = read_text_limited(path, max_bytes)?;
+    from_json_str(&text).map_err(|cause| FileError::Format {
+        path: path.to_path_buf(),
+        cause,
+    })
+}
+
+/// The text of a file of at most `max_bytes` bytes (a longer one, or an endless stream, is
+/// refused after reading that much), which must be UTF-8.
+pub(crate) fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, FileError> {
     use std::io::Read;
     let io = |cause| FileError::Io {
         path: path.to_path_buf(),
@@ -945,15 +967,11 @@ pub fn load_limited(path: &Path, max_bytes: u64) -> Result<Surface, FileError> {
             format!("longer than the {max_bytes} bytes allowed"),
         )));
     }
-    let text = String::from_utf8(bytes).map_err(|_| {
+    String::from_utf8(bytes).map_err(|_| {
         io(std::io::Error::new(
             std::io::ErrorKind::InvalidData,
             "is not UTF-8 text (a pssurf file is JSON)",
         ))
-    })?;
-    from_json_str(&text).map_err(|cause| FileError::Format {
-        path: path.to_path_buf(),
-        cause,
     })
 }
 

@@ -1,13 +1,17 @@
-//! Files: the versioned pssurf JSON format (see `docs/format.md`), scene files of named
-//! surfaces, curves as CSV or OBJ, and atomic writing.
+//! Files: the versioned pssurf JSON format (see `docs/format.md`) for surfaces and curves,
+//! scene files of named surfaces, curves as CSV or OBJ, and atomic writing.
 
 mod atomic;
+mod curve_file;
 mod curves;
 mod format;
 mod scene;
 
 pub use atomic::{
     Durability, atomic_write, atomic_write_bytes, io_cause, remove_pending_temp_files,
+};
+pub use curve_file::{
+    CURVE_KIND, curve_from_json, curve_to_json, is_curve, load_curve_limited, save_curve,
 };
 pub use curves::{
     CURVES_HEADER, CurvesError, MAX_CURVE_POINTS, read_curves_csv, write_curves_csv,
