@@ -1051,3 +1051,21 @@ fn info_reads_curve_files() {
     let msg = fails(&["plot", &s(&path), "-o", "x.png"]);
     assert!(msg.contains("a curve file"), "{msg}");
 }
+
+/// A loops file that cannot be written stops the import before the scene is written.
+#[test]
+fn import_with_an_unwritable_loops_file_writes_nothing() {
+    let d = tmp();
+    let scene = d.path().join("scene.json");
+    let loops = d.path().join("no-such-dir").join("loops.csv");
+    let msg = fails(&[
+        "import",
+        &iges_file("hammer.iges"),
+        "-o",
+        &s(&scene),
+        "--loops",
+        &s(&loops),
+    ]);
+    assert_eq!(msg.trim().lines().count(), 1, "{msg}");
+    assert!(!scene.exists());
+}

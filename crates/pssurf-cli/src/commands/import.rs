@@ -55,15 +55,17 @@ pub fn run(args: &ImportArgs) -> Result<()> {
         })
         .collect();
     let json = scene_to_json(&objects);
-    crate::output::write_output(&args.output, Durability::Atomic, |w| {
-        Ok(w.write_all(json.as_bytes())?)
-    })?;
+    // The loops first: if they cannot be written, the scene is not written either (a scene
+    // written by a command that then fails would look like a success).
     if let Some(path) = &args.loops {
         let curves = loops(&model);
         crate::output::write_output(path, Durability::Atomic, |w| {
             Ok(pssurf::io::write_curves_csv(w, &curves)?)
         })?;
     }
+    crate::output::write_output(&args.output, Durability::Atomic, |w| {
+        Ok(w.write_all(json.as_bytes())?)
+    })?;
     report(args, &model);
     Ok(())
 }
