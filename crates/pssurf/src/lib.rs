@@ -16,6 +16,7 @@
 pub(crate) mod test_util;
 
 pub mod bezier;
+pub mod edit;
 #[cfg(feature = "expr")]
 pub mod expr;
 pub mod geometry;
