@@ -111,6 +111,9 @@ enum Command {
     /// Approximate a NURBS surface by a UPS surface (thesis 6.4.2), reporting the deviation;
     /// --tolerance refines until it is met.
     Approx(commands::approx::ApproxArgs),
+    /// Prescribe a curvature at a point (ku, kv, k1, k2, K, H): the control points nearby move
+    /// by the smallest smooth change; `--graph-demo` runs the paper's polynomial method.
+    Edit(commands::edit::EditArgs),
     /// Import the B-spline surfaces of an IGES file as a scene (one object per surface, in
     /// millimetres); other entities are listed with their counts.
     Import(commands::import::ImportArgs),
@@ -161,6 +164,7 @@ fn main() -> ExitCode {
         Command::Probe(a) => commands::probe::run(a),
         Command::Import(a) => commands::import::run(a),
         Command::Approx(a) => commands::approx::run(a),
+        Command::Edit(a) => commands::edit::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),

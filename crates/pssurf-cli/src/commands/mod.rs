@@ -4,6 +4,7 @@ pub mod approx;
 pub mod curvature;
 pub mod denoise;
 pub mod domain;
+pub mod edit;
 pub mod eval;
 pub mod export;
 pub mod fairness;

@@ -398,8 +398,13 @@ impl GraphPatch {
         }
     }
 
+    /// The jet of the patch X(u, v) = (u, h(u, v), v) at (u, v).
+    pub fn jet(&self, u: f64, v: f64) -> crate::bezier::Jet<Vector3<f64>> {
+        Self::jet_of(&self.height, u, v)
+    }
+
     /// The jet of X(u, v) = (u, h, v) at (u, v) for a height `h`.
-    fn jet_of(h: &Poly2, u: f64, v: f64) -> crate::bezier::Jet<Vector3<f64>> {
+    pub(crate) fn jet_of(h: &Poly2, u: f64, v: f64) -> crate::bezier::Jet<Vector3<f64>> {
         let d = |a, b| h.derivative(a, b, u, v);
         crate::bezier::Jet {
             value: Vector3::new(u, d(0, 0), v),
@@ -510,8 +515,9 @@ impl GraphPatch {
         let (p1, p2) = (phi.derivative(1, r1), phi.derivative(2, r1));
         curve_parameter(f1, f2, p1, p2, lambda).map_err(|reach| {
             GraphEditError::Unreachable(format!(
-                "curvature {lambda} is out of reach for this curve with this continuity and region: the {} curvature possible is {reach}; widen the region or lower the continuity",
-                if lambda > 0.0 { "largest" } else { "smallest" }
+                "curvature {lambda} is out of reach for this curve with this continuity and region: the {} curvature possible is {}; widen the region or lower the continuity",
+                if lambda > 0.0 { "largest" } else { "smallest" },
+                crate::text::Significant(reach, 8)
             ))
         })
     }
@@ -625,7 +631,7 @@ impl GraphPatch {
         Err(GraphEditError::Unreachable(format!(
             "{} = {target} is out of reach by reshaping this coordinate curve with this continuity and region (the closest is {}): try the other direction or a wider region",
             m.description(),
-            closest.1
+            crate::text::Significant(closest.1, 8)
         )))
     }
 }

@@ -208,7 +208,8 @@ pub enum LocalEditError {
     Singular,
     /// No control point that moves the surface at the point lies in the region.
     #[error(
-        "no control point that shapes the surface at the point lies within the radius {radius} (the nearest is {nearest} away): give a larger --region"
+        "no control point that shapes the surface at the point lies within the radius {radius} (the nearest is {} away): give a larger --region",
+        crate::text::Significant(*nearest, 6)
     )]
     EmptyRegion {
         /// The radius given.
@@ -223,7 +224,9 @@ pub enum LocalEditError {
     TooLarge(usize),
     /// The iteration did not reach the target.
     #[error(
-        "{measure} = {target} is out of reach with the control points of this region{keeps}: the closest was {reached} (from {before}); try a larger region or fewer constraints"
+        "{measure} = {target} is out of reach with the control points of this region{keeps}: the closest was {} (from {}); try a larger region or fewer constraints",
+        crate::text::Significant(*reached, 8),
+        crate::text::Significant(*before, 8)
     )]
     Unreachable {
         /// The measure's description.
