@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use egui::Rect;
 use nalgebra::Point2;
 use pssurf::interrogate::CurvatureQuantity;
+use pssurf::surface::{ControlId, ControlNet, ControlPoint};
 use pssurf_viz::MeshFormat;
 
 use crate::command::{Command, FrameTarget, ObjectEdit, ViewContext};
@@ -407,6 +408,44 @@ impl App {
         Ok(())
     }
 
+    /// Sets several control points of an object: one undo step named `what`, or (None) a step
+    /// of a drag. The object's meshes are rebuilt (an edit by curvature moves many control
+    /// triangles); traced curves follow.
+    pub fn set_controls(
+        &mut self,
+        object: usize,
+        what: Option<&'static str>,
+        changes: &[(ControlId, ControlPoint)],
+    ) -> Result<(), String> {
+        let old = self.revision(object)?;
+        let mut pieces = Vec::new();
+        let mut apply = |scene: &mut Scene| -> Result<(), String> {
+            let o = &mut scene.objects[object];
+            pieces = o
+                .surface_mut()
+                .set_control_points(changes)
+                .map_err(|e| e.to_string())?;
+            Ok(())
+        };
+        match what {
+            Some(name) => self.doc.edit(name, &mut apply)?,
+            None => {
+                let mut result = Ok(());
+                self.doc.edit_continuing(|scene| {
+                    result = apply(scene);
+                    if result.is_err() {
+                        scene.objects[object].revision = old;
+                    }
+                });
+                result?
+            }
+        }
+        if let Some(o) = self.doc.scene.objects.get(object) {
+            self.runtime.curves.edited(o, old, &pieces);
+        }
+        Ok(())
+    }
+
     fn revision(&self, object: usize) -> Result<u64, String> {
         self.doc
             .scene
@@ -557,6 +596,15 @@ impl App {
                 vertex,
                 control,
             } => self.report(|app| app.drag_vertex(object, vertex, control)),
+            Command::SetControls {
+                object,
+                what,
+                changes,
+            } => self.report(|app| app.set_controls(object, Some(what), &changes)),
+            Command::DragControls { object, changes } => {
+                self.report(|app| app.set_controls(object, None, &changes))
+            }
+            Command::MarkRegion(mark) => self.runtime.region = mark,
             Command::EditObject { object, edit } => self.edit_object(object, edit),
             Command::ToggleVisible(objects) => self.toggle_visible(&objects),
             Command::Delete(object) => self.delete(object),

@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use nalgebra::Point2;
-use pssurf::surface::{Surface, UpsSurface};
+use pssurf::surface::{ControlId, ControlPoint, Surface, UpsSurface};
 use pssurf_viz::MeshFormat;
 
 use crate::camera::OrbitCamera;
@@ -63,6 +63,20 @@ impl Shape {
     }
 }
 
+/// The region of an edit by curvature, drawn in the domain view while its panel is open.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegionMark {
+    /// The object's identity (see `SceneObject::id`).
+    pub id: u64,
+    /// The centre (the probe's parameters).
+    pub uv: Point2<f64>,
+    /// The radius in parameter units.
+    pub radius: f64,
+    /// The frame (egui pass) that set it: the domain view draws marks of the last two passes
+    /// only, so that the mark goes away with its panel.
+    pub pass: u64,
+}
+
 /// What to export.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExportKind {
@@ -106,6 +120,25 @@ pub enum Command {
         /// The new control points.
         control: VertexControl,
     },
+    /// Set several control points of an object as one undoable edit named `what` (an edit by
+    /// curvature).
+    SetControls {
+        /// The object's index.
+        object: usize,
+        /// The edit's name for the Edit menu.
+        what: &'static str,
+        /// The new control points.
+        changes: Vec<(ControlId, ControlPoint)>,
+    },
+    /// A step of a drag that sets several control points (after [`Command::StartDrag`]).
+    DragControls {
+        /// The object's index.
+        object: usize,
+        /// The new control points.
+        changes: Vec<(ControlId, ControlPoint)>,
+    },
+    /// Show (or clear) the region of an edit by curvature in the domain view.
+    MarkRegion(Option<RegionMark>),
     /// Start dragging a control point: one undo step for the whole drag, and the colour
     /// scales hold still until it ends.
     StartDrag,

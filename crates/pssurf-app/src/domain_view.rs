@@ -205,6 +205,21 @@ impl DomainView {
                 Stroke::new(1.5, Color32::from_rgb(r, g, b)),
             ));
         }
+        let pass = ui.ctx().cumulative_pass_nr();
+        if let Some(mark) = cx
+            .runtime
+            .region
+            .filter(|m| m.id == object.id && m.pass + 2 >= pass)
+        {
+            // The region of an edit by curvature: control triangles of vertices inside move.
+            let centre = map.to_screen(mark.uv);
+            let edge = map.to_screen(mark.uv + nalgebra::Vector2::new(mark.radius, 0.0));
+            shapes.push(Shape::circle_stroke(
+                centre,
+                (edge - centre).length(),
+                Stroke::new(1.5, Color32::from_rgb(230, 110, 0)),
+            ));
+        }
         if let Some(p) = cx.probe().filter(|p| p.object == i) {
             shapes.push(Shape::circle_stroke(
                 map.to_screen(p.uv),

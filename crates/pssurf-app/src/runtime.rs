@@ -24,6 +24,8 @@ pub struct Runtime {
     pub extra: Arc<LineSet>,
     /// The generations `extra` was made from.
     extra_key: (u64, u64),
+    /// The region of the edit-by-curvature panel, while it is open.
+    pub region: Option<crate::command::RegionMark>,
     /// The wgpu device and queue, when the 3D view's GPU resources are installed (the view
     /// and the picture export need them).
     pub gpu: Option<RenderState>,

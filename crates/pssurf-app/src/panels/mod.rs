@@ -5,12 +5,14 @@
 //! [`default_panels`].
 
 mod curves;
+mod edit;
 mod noise;
 mod nurbs;
 mod subdivision;
 mod wavelet;
 
 pub use curves::CurvesPanel;
+pub use edit::EditPanel;
 pub use noise::NoisePanel;
 pub use nurbs::NurbsPanel;
 pub use subdivision::SubdivisionPanel;
@@ -43,6 +45,7 @@ pub fn default_panels() -> Vec<Box<dyn Panel>> {
         Box::new(WaveletPanel::default()),
         Box::new(NoisePanel::default()),
         Box::new(CurvesPanel::default()),
+        Box::new(EditPanel::default()),
         Box::new(NurbsPanel::default()),
     ]
 }

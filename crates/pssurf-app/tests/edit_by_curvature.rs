@@ -1,0 +1,103 @@
+//! Issue 16: the "Edit by curvature" panel at the probe, through the UI (egui_kittest).
+
+mod support;
+
+use egui::accesskit::Role;
+use egui_kittest::kittest::{By, Queryable};
+use pssurf::edit::Measure;
+use pssurf::surface::{ControlNet, ParametricSurface};
+use pssurf_app::App;
+use pssurf_app::command::Command;
+use support::{harness, press};
+
+#[test]
+fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
+    let mut app = App::demo();
+    app.doc.selection.object = Some(1);
+    let mut h = harness(app);
+    let (lo, hi) = h.state().doc.scene.objects[1].surface.domain_bounds();
+    let uv = nalgebra::Point2::from((lo.coords + hi.coords) / 2.0);
+    h.state_mut().apply(Command::SetProbe { object: 1, uv });
+    h.run_steps(2);
+    press(&mut h, "Edit by curvature");
+    let before = h.state().doc.scene.objects[1].surface.control_points();
+    let k0 = Measure::Gaussian
+        .of(&h.state().doc.scene.objects[1].surface.jet(uv).unwrap().jet)
+        .unwrap();
+    let target = k0 + 0.25;
+    let node = h
+        .query_all(By::new().label("target").role(Role::SpinButton))
+        .next()
+        .expect("the target field");
+    node.set_value_accesskit(target);
+    h.run_steps(2);
+    press(&mut h, "Apply");
+    let s = &h.state().doc.scene.objects[1].surface;
+    let k = Measure::Gaussian.of(&s.jet(uv).unwrap().jet).unwrap();
+    assert!((k - target).abs() < 1e-8, "K = {k}, asked {target}");
+    assert_eq!(h.state().doc.undo_name(), Some("edit by curvature"));
+    // The region is shown in the domain view while the panel is open.
+    assert!(h.state().runtime.region.is_some());
+    h.state_mut().apply(Command::Undo);
+    assert_eq!(
+        h.state().doc.scene.objects[1].surface.control_points(),
+        before
+    );
+}
+
+/// Dragging the target edits live (the measure follows during the drag) and the whole drag is
+/// one undo step.
+#[test]
+fn dragging_the_target_edits_live() {
+    use egui::{Event, PointerButton};
+    let mut app = App::demo();
+    app.doc.selection.object = Some(1);
+    let mut h = harness(app);
+    let (lo, hi) = h.state().doc.scene.objects[1].surface.domain_bounds();
+    let uv = nalgebra::Point2::from((lo.coords + hi.coords) / 2.0);
+    h.state_mut().apply(Command::SetProbe { object: 1, uv });
+    h.run_steps(2);
+    press(&mut h, "Edit by curvature");
+    let before = h.state().doc.scene.objects[1].surface.control_points();
+    let measure = |h: &egui_kittest::Harness<'_, App>| {
+        let s = &h.state().doc.scene.objects[1].surface;
+        Measure::Gaussian.of(&s.jet(uv).unwrap().jet).unwrap()
+    };
+    let k0 = measure(&h);
+    let field = h
+        .query_all(By::new().label("target").role(Role::SpinButton))
+        .next()
+        .expect("the target field")
+        .rect();
+    let start = field.center();
+    h.event(Event::PointerMoved(start));
+    h.event(Event::PointerButton {
+        pos: start,
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers: Default::default(),
+    });
+    h.run_steps(1);
+    let mut seen = Vec::new();
+    for k in 1..=6 {
+        h.event(Event::PointerMoved(start + egui::vec2(8.0 * k as f32, 0.0)));
+        h.run_steps(2);
+        seen.push(measure(&h));
+    }
+    let end = start + egui::vec2(48.0, 0.0);
+    h.event(Event::PointerButton {
+        pos: end,
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers: Default::default(),
+    });
+    h.run_steps(3);
+    // K rose step by step while dragging to the right.
+    assert!(seen.windows(2).all(|w| w[1] > w[0]), "{seen:?}");
+    assert!(seen[5] > k0, "{k0} then {seen:?}");
+    h.state_mut().apply(Command::Undo);
+    assert_eq!(
+        h.state().doc.scene.objects[1].surface.control_points(),
+        before
+    );
+}
