@@ -34,7 +34,11 @@ fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
     press(&mut h, "Apply");
     let s = &h.state().doc.scene.objects[1].surface;
     let k = Measure::Gaussian.of(&s.jet(uv).unwrap().jet).unwrap();
-    assert!((k - target).abs() < 1e-8, "K = {k}, asked {target}");
+    assert!(
+        (k - target).abs() < 1e-8,
+        "K = {k}, asked {target}: {}",
+        h.state().status
+    );
     assert_eq!(h.state().doc.undo_name(), Some("edit by curvature"));
     // The region is shown in the domain view while the panel is open.
     assert!(h.state().runtime.region.is_some());

@@ -46,7 +46,16 @@ fn grid(k: usize) -> Triangulation {
 }
 
 fn one_edit(c: &mut Criterion) {
-    let tri = grid(317);
+    let mut g = c.benchmark_group("local_edit");
+    for k in [100, 317] {
+        edit_on_grid(&mut g, k);
+    }
+    g.finish();
+}
+
+/// One edit on a k × k grid with a region of about 50 control triangles.
+fn edit_on_grid(g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>, k: usize) {
+    let tri = grid(k);
     let basis = Arc::new(PsBasis::optimal(tri).unwrap());
     let spline = PsSpline::interpolate(basis, |p| {
         let (s, co) = (3.0 * p.x).sin_cos();
@@ -70,7 +79,7 @@ fn one_edit(c: &mut Criterion) {
         at,
         measure: Measure::Mean,
         target: h + 0.2,
-        radius: 4.0 / 316.0,
+        radius: 4.0 / (k - 1) as f64,
         keep_point: true,
         keep_tangent: true,
     };
@@ -80,15 +89,14 @@ fn one_edit(c: &mut Criterion) {
         probe.free_groups, probe.iterations, probe.before, probe.after
     );
     probe.undo(&mut surface).unwrap();
-    let mut g = c.benchmark_group("local_edit_100k");
-    g.bench_function("mean curvature +0.2, point and tangent kept", |b| {
+    let name = format!("{} vertices, H + 0.2, point and tangent kept", k * k);
+    g.bench_function(name, |b| {
         b.iter(|| {
             let e = edit_locally(&mut surface, &req).unwrap();
             e.undo(&mut surface).unwrap();
             black_box(e.after)
         })
     });
-    g.finish();
 }
 
 criterion_group!(benches, one_edit);

@@ -17,7 +17,8 @@ use crate::command::{Command, RegionMark, ViewContext};
 pub struct EditSettings {
     /// The measure's short name (ku, kv, k1, k2, K, H).
     pub measure: String,
-    /// The region's radius in parameter units.
+    /// The region's radius in parameter units; 0 for automatic (2.5 times the longest edge of
+    /// the triangle at the probe).
     pub radius: f64,
     /// Keep the point.
     pub keep_point: bool,
@@ -29,7 +30,7 @@ impl Default for EditSettings {
     fn default() -> Self {
         EditSettings {
             measure: "K".into(),
-            radius: 0.3,
+            radius: 0.0,
             keep_point: true,
             keep_tangent: true,
         }
@@ -55,6 +56,15 @@ impl EditPanel {
         Measure::parse(&self.settings.measure).unwrap_or(Measure::Gaussian)
     }
 
+    /// The region's radius at `uv` on `s` (the automatic one when the setting is 0).
+    fn radius(&self, s: &Surface, uv: nalgebra::Point2<f64>) -> f64 {
+        if self.settings.radius > 0.0 {
+            self.settings.radius
+        } else {
+            pssurf::edit::default_radius(s, uv).unwrap_or(1.0)
+        }
+    }
+
     /// The edit of `base` to the target at the probe: the changed control points.
     fn compute(
         &self,
@@ -67,7 +77,7 @@ impl EditPanel {
             at: uv,
             measure: self.measure(),
             target,
-            radius: self.settings.radius,
+            radius: self.radius(base, uv),
             keep_point: self.settings.keep_point,
             keep_tangent: self.settings.keep_tangent,
         };
@@ -112,7 +122,7 @@ impl Panel for EditPanel {
         cx.emit(Command::MarkRegion(Some(RegionMark {
             id: o.id,
             uv,
-            radius: self.settings.radius,
+            radius: self.radius(&o.surface, uv),
             pass: ui.ctx().cumulative_pass_nr(),
         })));
         let current = o
@@ -236,7 +246,7 @@ impl Panel for EditPanel {
     fn restore(&mut self, settings: &serde_json::Value) {
         if let Some(s) = load_settings::<EditSettings>(settings)
             && s.radius.is_finite()
-            && s.radius > 0.0
+            && s.radius >= 0.0
             && Measure::parse(&s.measure).is_some()
         {
             self.settings = s;

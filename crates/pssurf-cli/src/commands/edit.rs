@@ -9,7 +9,7 @@ use anyhow::{Context, Result, bail};
 use nalgebra::Point2;
 use pssurf::edit::graph::{Direction, GraphEditRequest, GraphPatch, GraphTarget, measure_on};
 use pssurf::edit::{EditRequest, Measure, edit_locally};
-use pssurf::surface::{ParametricSurface, PiecewiseSurface, Surface};
+use pssurf::surface::{ParametricSurface, Surface};
 use pssurf::text::Significant;
 
 /// What to keep while editing.
@@ -122,7 +122,7 @@ pub fn run(args: &EditArgs) -> Result<()> {
         None => bail!("give the point with --at u,v"),
     };
     let mut surface = crate::budget::load_surface(input)?;
-    let jet = surface.jet(at).map_err(|_| {
+    surface.jet(at).map_err(|_| {
         anyhow::anyhow!("--at {},{}: the point lies outside the domain", at.x, at.y)
     })?;
     let radius = match &args.region {
@@ -130,7 +130,7 @@ pub fn run(args: &EditArgs) -> Result<()> {
             [r] if *r > 0.0 => *r,
             _ => bail!("--region `{r}`: give one positive radius"),
         },
-        None => default_radius(&surface, jet.piece),
+        None => pssurf::edit::default_radius(&surface, at).unwrap_or(1.0),
     };
     let req = EditRequest {
         at,
@@ -163,21 +163,6 @@ pub fn run(args: &EditArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
-}
-
-/// 2.5 × the longest edge of the piece's triangle (its whole triangle for PS kinds).
-fn default_radius(s: &Surface, piece: usize) -> f64 {
-    let corners = match s.ps_basis() {
-        Some(b) => b.triangulation().triangle_geometry(piece / 6).v.to_vec(),
-        None => s.piece_shape(piece).corners(),
-    };
-    let mut longest = 0.0f64;
-    for a in &corners {
-        for b in &corners {
-            longest = longest.max((a - b).norm());
-        }
-    }
-    2.5 * longest
 }
 
 /// The paper's method on the built-in graph patch.

@@ -7,11 +7,13 @@
 //!
 //!   E(y) = yᵀ (Q + R) y,
 //!
-//! where Q is the thin-plate energy ∫ s_uu² + 2 s_uv² + s_vv² of the change, per coordinate,
-//! on the triangles the free points influence (PS kinds; the control points outside the
-//! region stay fixed, so the change fades out smoothly towards them), and R a small ridge
-//! that grows with the distance from the point (so nearer points move more, and E is
-//! positive definite). The constraints are nonlinear: the measure equals the target, and
+//! where Q measures how unevenly the change bends (see [`smoothness`]: the jumps of its Hessian
+//! across the edges of the PS refinement, and the differences of its Hessians over the core of
+//! the region; per coordinate, PS kinds) and R a small ridge that grows with the distance from
+//! the point (so nearer points move more, and E is positive definite). So the curvature
+//! changes evenly around the point and fades out towards the fixed control points, instead of
+//! changing on the one piece that holds the point (the thin-plate energy, tried first, did
+//! that: a spike in the curvature plot). The constraints are nonlinear: the measure equals the target, and
 //! optionally the point and the tangent plane stay. Each iteration linearises them,
 //! A (y′ − y) = −r, and takes the minimiser of E under the linearised constraints,
 //! y′ = P⁻¹Aᵀ (A P⁻¹ Aᵀ)⁻¹ (A y − r) with P = Q + R (one Cholesky factorisation, k ≤ 6
@@ -19,6 +21,11 @@
 //! the constraints are central differences in the control coordinates of the few groups that
 //! influence the point (three control triangles on a PS surface); the stopping test uses the
 //! exact curvature of the surface as edited.
+//!
+//! Every control point moves along one direction: the surface normal at the point (the
+//! height axis for a functional surface), as the paper moves the height of a graph. (Moving
+//! all three coordinates was tried first: the cheapest change then reparametrises the surface
+//! inside the region, and its curvature plot turns to noise.)
 //!
 //! An edit is local and keeps the surface's smoothness by construction: only control points
 //! move. The surface is left unchanged when the target cannot be reached (the error says how
@@ -36,11 +43,14 @@ use thiserror::Error;
 
 use crate::bezier::Jet;
 use crate::interrogate::Curvature;
-use crate::ps::PsBasis;
+use crate::ps::{Energy, PsBasis};
 use crate::surface::{
     ControlFreedom, ControlId, ControlNet, ControlPoint, EditError, ParametricSurface, PiecePoint,
     PiecewiseSurface, Surface,
 };
+
+/// The weight of the core term of [`smoothness`] against the Hessian jumps, by trace.
+const CORE_WEIGHT: f64 = 1.0;
 
 /// The most Gauss–Newton iterations.
 const MAX_ITERATIONS: usize = 60;
@@ -266,8 +276,6 @@ struct Region {
     /// Ids of the free control points, in order; point p has values `p` in each coordinate
     /// block.
     ids: Vec<ControlId>,
-    /// The coordinates that may change (all three, or only z for a functional surface).
-    coords: Vec<usize>,
     /// Indices (into `ids`) of the points that influence the surface at the point.
     relevant: Vec<usize>,
     /// The distance of each free point's group anchor from the point.
@@ -337,10 +345,6 @@ impl Region {
                 nearest,
             });
         }
-        let coords = match s.freedom() {
-            ControlFreedom::Full => vec![0, 1, 2],
-            ControlFreedom::Height => vec![2],
-        };
         let mut ids = Vec::new();
         let mut distance = Vec::new();
         let mut relevant = Vec::new();
@@ -358,7 +362,6 @@ impl Region {
         }
         Ok(Region {
             ids,
-            coords,
             relevant,
             distance,
             groups,
@@ -370,9 +373,27 @@ impl Region {
     }
 }
 
-/// The thin-plate energy of the change of the free control values (one coordinate), on the
-/// triangles their vertices influence; zero for surfaces without a PS basis.
-fn thin_plate(basis: Option<&PsBasis>, region: &Region, group_len: usize) -> DMatrix<f64> {
+/// The energy of the change of the free control values (one coordinate), on the triangles the
+/// free vertices influence (zero for surfaces without a PS basis):
+///
+/// - the jumps of its Hessian across the edges of the PS refinement (`Energy::HessianJumps`),
+///   which vanish on quadratics, so the change is smooth where it fades out; and
+/// - ten times as much (by trace) of Σ area_k ‖H_k − H_p‖²_F over the pieces k whose centroid
+///   lies within half the radius of the point, H_p the Hessian of the change on the point's
+///   own piece: the second derivatives change alike over the core of the region.
+///
+/// A point value of second derivatives is cheap to change by a spike on one piece in any
+/// energy of order below three, and the jump energy is only borderline: alone (or the
+/// thin-plate energy, tried first) it put the whole change of the curvature on the point's
+/// piece. The core term spreads it.
+fn smoothness(
+    basis: Option<&PsBasis>,
+    region: &Region,
+    group_len: usize,
+    at: Point2<f64>,
+    piece: usize,
+    radius: f64,
+) -> DMatrix<f64> {
     let n = region.len();
     let mut q = DMatrix::zeros(n, n);
     let Some(b) = basis else { return q };
@@ -382,25 +403,60 @@ fn thin_plate(basis: Option<&PsBasis>, region: &Region, group_len: usize) -> DMa
         .iter()
         .map(|&(first, k)| (first / group_len, k))
         .collect();
-    let weights = [1.0, 2.0, 1.0];
-    for t in tri.molecules_of(index.keys().copied()) {
-        let corners = tri.triangle(t);
-        // Local value 3c + j of the triangle → free value index.
-        let local: [Option<usize>; 9] =
-            std::array::from_fn(|v| index.get(&corners[v / 3]).map(|&k| k * group_len + v % 3));
-        for piece in b.piece_hessians(t) {
-            for (e, row) in piece.rows.iter().enumerate() {
-                let w = piece.area * weights[e];
-                for a in 0..9 {
-                    let Some(ia) = local[a] else { continue };
-                    for c in 0..9 {
-                        if let Some(ic) = local[c] {
-                            q[(ia, ic)] += w * row[a] * row[c];
-                        }
-                    }
+    let free_value = |vertex: usize, j: usize| index.get(&vertex).map(|&k| k * group_len + j);
+    let triangles = tri.molecules_of(index.keys().copied());
+    b.local_energy_elements(Energy::HessianJumps, &triangles, |vertices, m| {
+        // Element value 3a + j → free value index.
+        let local: Vec<Option<usize>> = (0..3 * vertices.len())
+            .map(|v| free_value(vertices[v / 3], v % 3))
+            .collect();
+        for (a, ia) in local.iter().enumerate() {
+            let Some(ia) = ia else { continue };
+            for (c, ic) in local.iter().enumerate() {
+                if let Some(ic) = ic {
+                    q[(*ia, *ic)] += m[a][c];
                 }
             }
         }
+    });
+    // The core: Hessians of the pieces near the point against the point's piece.
+    let frobenius = [1.0, 2.0, 1.0];
+    let hessian_rows = |t: usize, k: usize| -> ([DVector<f64>; 3], f64) {
+        let h = b.piece_hessians(t)[k];
+        let v = tri.triangle(t);
+        let rows = std::array::from_fn(|e| {
+            let mut row = DVector::zeros(n);
+            for c in 0..3 {
+                for j in 0..3 {
+                    if let Some(i) = free_value(v[c], j) {
+                        row[i] += h.rows[e][3 * c + j];
+                    }
+                }
+            }
+            row
+        });
+        (rows, h.area)
+    };
+    let (own, _) = hessian_rows(piece / 6, piece % 6);
+    let mut core = DMatrix::zeros(n, n);
+    for &t in &triangles {
+        for (k, sub) in b.refinement().sub_triangles(tri, t).iter().enumerate() {
+            let d = (sub.centroid() - at).norm() / radius;
+            if d >= 1.0 || 6 * t + k == piece {
+                continue;
+            }
+            // A smooth window: full weight at the point, none at the region's border.
+            let window = (1.0 - d * d).powi(2);
+            let (rows, area) = hessian_rows(t, k);
+            for e in 0..3 {
+                let diff = &rows[e] - &own[e];
+                core += (&diff * diff.transpose()) * (window * area * frobenius[e]);
+            }
+        }
+    }
+    let (tq, tc) = (q.trace(), core.trace());
+    if tc > 0.0 {
+        q += core * (CORE_WEIGHT * tq.max(tc * 1e-3) / tc);
     }
     q
 }
@@ -417,11 +473,62 @@ struct Solver<'a> {
     /// The original value, normal and first derivatives at the point.
     start: Jet<Vector3<f64>>,
     normal: Vector3<f64>,
+    /// The direction every control point moves in: the normal at the point (the height axis
+    /// for a functional surface).
+    dir: Vector3<f64>,
     /// Lengths: the free points' extent and the finite-difference step.
     size: f64,
     step: f64,
-    /// The Cholesky factor of P = Q + R (one coordinate block).
+    /// The Cholesky factor of P (Q + R on control displacements; the identity on bump
+    /// coefficients).
     factor: nalgebra::Cholesky<f64, nalgebra::Dyn>,
+    /// For PS kinds, the map from the coefficients of the windowed quadratic bump to the free
+    /// control points' displacements (see [`bump_shapes`]); `None`: each control point's
+    /// displacement is a variable.
+    shape: Option<DMatrix<f64>>,
+}
+
+/// The map from six bump coefficients to the displacements of the free control values of a PS
+/// surface: the change is d(u, v) = w(ρ) Σ_q c_q m_q(x, y) with (x, y) = (uv − at) / radius,
+/// ρ = |(x, y)|, the window w = (1 − ρ²)³ (zero with its first two derivatives at the region's
+/// border) and m_q ∈ {1, x, y, x², x y, y²}; each vertex's control values are the Hermite
+/// coefficients (2.45) of d's value and gradient there, so the PS surface changes by the PS
+/// interpolant of d.
+fn bump_shapes(basis: &PsBasis, region: &Region, at: Point2<f64>, radius: f64) -> DMatrix<f64> {
+    let mut d = DMatrix::zeros(region.len(), 6);
+    let tri = basis.triangulation();
+    for &(first, k) in &region.groups {
+        let i = first / 3;
+        let rel = (tri.vertex(i) - at) / radius;
+        let (x, y) = (rel.x, rel.y);
+        let rho2 = x * x + y * y;
+        if rho2 >= 1.0 {
+            continue;
+        }
+        let w = (1.0 - rho2).powi(3);
+        // ∂w/∂x, ∂w/∂y in scaled units.
+        let wx = -6.0 * x * (1.0 - rho2).powi(2);
+        let wy = -6.0 * y * (1.0 - rho2).powi(2);
+        let monomials: [(f64, f64, f64); 6] = [
+            (1.0, 0.0, 0.0),
+            (x, 1.0, 0.0),
+            (y, 0.0, 1.0),
+            (x * x, 2.0 * x, 0.0),
+            (x * y, y, x),
+            (y * y, 0.0, 2.0 * y),
+        ];
+        let map = basis.hermite_map(i);
+        for (q, (m, mx, my)) in monomials.into_iter().enumerate() {
+            // Value and gradient in (u, v): the scaled derivatives divided by the radius.
+            let f = w * m;
+            let fu = (wx * m + w * mx) / radius;
+            let fv = (wy * m + w * my) / radius;
+            for (j, [one, dx, dy]) in map.iter().enumerate() {
+                d[(3 * k + j, q)] = one * f + dx * fu + dy * fv;
+            }
+        }
+    }
+    d
 }
 
 /// What the constraints ask: the measures' targets (one normally; two for the seed of a
@@ -463,15 +570,36 @@ impl<'a> Solver<'a> {
             .norm()
             .max(start.dx.norm() * req.radius)
             .max(1e-300);
-        let mut p = thin_plate(basis.as_deref(), &region, group_len);
-        let n = region.len();
-        let trace = (0..n).map(|i| p[(i, i)]).sum::<f64>() / n as f64;
-        let ridge = if trace > 0.0 { 1e-6 * trace } else { 1.0 };
-        for i in 0..n {
-            let d = region.distance[i] / req.radius;
-            p[(i, i)] += ridge * (1.0 + d * d);
-        }
+        let shape = basis
+            .as_deref()
+            .filter(|_| group_len == 3)
+            .map(|b| bump_shapes(b, &region, req.at, req.radius));
+        let p = match &shape {
+            Some(d) => DMatrix::identity(d.ncols(), d.ncols()),
+            None => {
+                let mut p = smoothness(
+                    basis.as_deref(),
+                    &region,
+                    group_len,
+                    req.at,
+                    piece,
+                    req.radius,
+                );
+                let n = region.len();
+                let trace = (0..n).map(|i| p[(i, i)]).sum::<f64>() / n as f64;
+                let ridge = if trace > 0.0 { 1e-6 * trace } else { 1.0 };
+                for i in 0..n {
+                    let d = region.distance[i] / req.radius;
+                    p[(i, i)] += ridge * (1.0 + d * d);
+                }
+                p
+            }
+        };
         let factor = nalgebra::Cholesky::new(p).ok_or(LocalEditError::Singular)?;
+        let dir = match surface.freedom() {
+            ControlFreedom::Full => normal,
+            ControlFreedom::Height => Vector3::z(),
+        };
         Ok(Solver {
             surface,
             region,
@@ -481,26 +609,30 @@ impl<'a> Solver<'a> {
             req: *req,
             start,
             normal,
+            dir,
             size,
             step: 1e-6 * size,
             factor,
+            shape,
         })
     }
 
-    /// The number of variables: values × coordinate blocks.
+    /// The number of variables: the bump's coefficients, or one displacement along `dir`
+    /// per free control point.
     fn vars(&self) -> usize {
-        self.region.len() * self.region.coords.len()
+        self.shape.as_ref().map_or(self.region.len(), |d| d.ncols())
     }
 
-    /// The control points for the change y.
+    /// The control points for the variables y.
     fn points(&self, y: &DVector<f64>) -> Vec<(ControlId, ControlPoint)> {
-        let n = self.region.len();
-        (0..n)
+        let disp = match &self.shape {
+            Some(d) => d * y,
+            None => y.clone(),
+        };
+        (0..self.region.len())
             .map(|i| {
                 let mut p = self.original[i];
-                for (b, &c) in self.region.coords.iter().enumerate() {
-                    p.position[c] += y[b * n + i];
-                }
+                p.position += self.dir * disp[i];
                 (self.region.ids[i], p)
             })
             .collect()
@@ -521,9 +653,9 @@ impl<'a> Solver<'a> {
             r.push(m.of(&j)? - t);
         }
         if self.req.keep_point {
-            for &c in &self.region.coords {
-                r.push(j.value[c] - self.start.value[c]);
-            }
+            // Control points move along `dir` only: the point moves along it too (to first
+            // order), so one row keeps it.
+            r.push(self.dir.dot(&(j.value - self.start.value)));
         }
         if self.req.keep_tangent {
             r.push(self.normal.dot(&j.dx));
@@ -566,40 +698,47 @@ impl<'a> Solver<'a> {
             && r[k..].iter().all(|x| x.abs() <= 1e-12 * self.size)
     }
 
-    /// The constraints' Jacobian at y by central differences in the relevant variables.
+    /// The constraints' Jacobian at y by central differences: in the bump's coefficients, or
+    /// in the displacements of the control points that influence the point (one at a time).
     fn jacobian(&mut self, targets: &Targets, y: &DVector<f64>) -> Option<DMatrix<f64>> {
-        let n = self.region.len();
         let rows = self.residuals(targets)?.len();
         let mut a = DMatrix::zeros(rows, self.vars());
-        let base = self.points(y);
-        for &i in &self.region.relevant.clone() {
-            for b in 0..self.region.coords.len() {
-                let c = self.region.coords[b];
+        if self.shape.is_some() {
+            for q in 0..self.vars() {
                 let mut diff = [Vec::new(), Vec::new()];
                 for (s, sign) in [1.0, -1.0].into_iter().enumerate() {
-                    let mut p = base[i].1;
-                    p.position[c] += sign * self.step;
-                    self.surface.set_control_points(&[(base[i].0, p)]).ok()?;
+                    let mut yq = y.clone();
+                    yq[q] += sign * self.step;
+                    self.set(&yq).ok()?;
                     diff[s] = self.residuals(targets)?;
                 }
-                self.surface.set_control_points(&[base[i]]).ok()?;
                 for r in 0..rows {
-                    a[(r, b * n + i)] = (diff[0][r] - diff[1][r]) / (2.0 * self.step);
+                    a[(r, q)] = (diff[0][r] - diff[1][r]) / (2.0 * self.step);
                 }
+            }
+            self.set(y).ok()?;
+            return Some(a);
+        }
+        let base = self.points(y);
+        for &i in &self.region.relevant.clone() {
+            let mut diff = [Vec::new(), Vec::new()];
+            for (s, sign) in [1.0, -1.0].into_iter().enumerate() {
+                let mut p = base[i].1;
+                p.position += self.dir * (sign * self.step);
+                self.surface.set_control_points(&[(base[i].0, p)]).ok()?;
+                diff[s] = self.residuals(targets)?;
+            }
+            self.surface.set_control_points(&[base[i]]).ok()?;
+            for r in 0..rows {
+                a[(r, i)] = (diff[0][r] - diff[1][r]) / (2.0 * self.step);
             }
         }
         Some(a)
     }
 
-    /// P⁻¹ x for a vector over all variables (block by block).
+    /// P⁻¹ x.
     fn solve_p(&self, x: &DVector<f64>) -> DVector<f64> {
-        let n = self.region.len();
-        let mut out = DVector::zeros(x.len());
-        for b in 0..self.region.coords.len() {
-            let part = self.factor.solve(&x.rows(b * n, n).into_owned());
-            out.rows_mut(b * n, n).copy_from(&part);
-        }
-        out
+        self.factor.solve(x)
     }
 
     /// The minimiser of yᵀPy under A y = rhs, or `None` when the constraints are dependent
@@ -683,6 +822,22 @@ impl<'a> Solver<'a> {
         let done = self.converged(targets, &r);
         Ok((y, done, MAX_ITERATIONS))
     }
+}
+
+/// A region radius that suits the surface at `at`: 2.5 times the longest edge of the
+/// triangle (PS kinds) or piece that holds the point, so that the region holds the control
+/// groups of the point's triangle and a ring or two around it. `None` outside the domain.
+pub fn default_radius(s: &Surface, at: Point2<f64>) -> Option<f64> {
+    let piece = s.jet(at).ok()?.piece;
+    let corners = match s.ps_basis() {
+        Some(b) => b.triangulation().triangle_geometry(piece / 6).v.to_vec(),
+        None => s.piece_shape(piece).corners(),
+    };
+    let longest = corners
+        .iter()
+        .flat_map(|a| corners.iter().map(move |b| (a - b).norm()))
+        .fold(0.0, f64::max);
+    Some(2.5 * longest)
 }
 
 /// Prescribes `req.measure = req.target` at `req.at` by moving the control points anchored

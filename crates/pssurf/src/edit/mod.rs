@@ -12,4 +12,6 @@
 pub mod graph;
 pub mod local;
 
-pub use local::{ControlChange, EditRequest, LocalEdit, LocalEditError, Measure, edit_locally};
+pub use local::{
+    ControlChange, EditRequest, LocalEdit, LocalEditError, Measure, default_radius, edit_locally,
+};

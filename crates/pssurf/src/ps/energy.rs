@@ -133,6 +133,41 @@ impl PsBasis {
         q
     }
 
+    /// The terms of `energy` that involve the triangles `ts` (sorted), each once, passed to
+    /// `add(vertices, matrix)` with the matrix over three control values per vertex (in the
+    /// vertices' order): for local assembly, when only the control values of some vertices
+    /// vary (all of whose molecule triangles are in `ts`).
+    pub(crate) fn local_energy_elements(
+        &self,
+        energy: Energy,
+        ts: &[usize],
+        mut add: impl FnMut(&[usize], &ElementMatrix),
+    ) {
+        let tri = self.triangulation();
+        let mut give = |e: &Element| add(&e.vertices[..e.len], &e.matrix);
+        for &t in ts {
+            match energy {
+                Energy::ThinPlate => give(&self.thin_plate_element(t)),
+                Energy::HessianJumps => {
+                    let h = self.piece_hessians(t);
+                    let pieces = self.refinement().sub_triangles(tri, t);
+                    give(&self.inner_jump_element(t, &h, &pieces));
+                    for c in 0..3 {
+                        let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
+                            continue;
+                        };
+                        // Each shared edge once: from the smaller triangle when both are
+                        // in the set, always when the neighbour is not.
+                        if n < t && ts.binary_search(&n).is_ok() {
+                            continue;
+                        }
+                        give(&self.cross_edge_element(t, c, n, &h, &pieces));
+                    }
+                }
+            }
+        }
+    }
+
     /// ∫ over triangle t of ‖∇²s‖²_F: Σ over its pieces of area × ‖H‖²_F.
     fn thin_plate_element(&self, t: usize) -> Element {
         let mut e = Element::new(&self.triangulation().triangle(t));
@@ -149,9 +184,28 @@ impl PsBasis {
     /// element each, over the four vertices of the two triangles).
     fn jump_elements(&self, t: usize, add: &mut impl FnMut(&Element)) {
         let tri = self.triangulation();
-        let v = tri.triangle(t);
         let h = self.piece_hessians(t);
         let pieces = self.refinement().sub_triangles(tri, t);
+        add(&self.inner_jump_element(t, &h, &pieces));
+        for c in 0..3 {
+            let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
+                continue;
+            };
+            if n < t {
+                continue;
+            }
+            add(&self.cross_edge_element(t, c, n, &h, &pieces));
+        }
+    }
+
+    /// The Hessian jumps across the six inner edges of triangle t (one element).
+    fn inner_jump_element(
+        &self,
+        t: usize,
+        h: &[PieceHessian; 6],
+        pieces: &[crate::geometry::Triangle2; 6],
+    ) -> Element {
+        let v = self.triangulation().triangle(t);
         let mut inner = Element::new(&v);
         for k in 0..6 {
             // Piece k and piece k + 1 share the edge from Z to their common corner
@@ -164,16 +218,7 @@ impl PsBasis {
                 inner.add_square(w * FROBENIUS[r], &jump);
             }
         }
-        add(&inner);
-        for c in 0..3 {
-            let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
-                continue;
-            };
-            if n < t {
-                continue;
-            }
-            add(&self.cross_edge_element(t, c, n, &h, &pieces));
-        }
+        inner
     }
 
     /// The jumps across PS edge c of triangle t (V_c → V_{c+1}) into its neighbour n: the
