@@ -3,6 +3,7 @@
 mod support;
 
 use egui::accesskit::Role;
+use egui_kittest::Harness;
 use egui_kittest::kittest::{By, Queryable};
 use pssurf::edit::Measure;
 use pssurf::surface::{ControlNet, ParametricSurface};
@@ -10,8 +11,9 @@ use pssurf_app::App;
 use pssurf_app::command::Command;
 use support::{harness, press};
 
-#[test]
-fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
+/// The demo with the NURPS paraboloid selected, the probe at its centre and the panel open;
+/// the probe's parameters.
+fn panel_open() -> (Harness<'static, App>, nalgebra::Point2<f64>) {
     let mut app = App::demo();
     app.doc.selection.object = Some(1);
     let mut h = harness(app);
@@ -20,6 +22,12 @@ fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
     h.state_mut().apply(Command::SetProbe { object: 1, uv });
     h.run_steps(2);
     press(&mut h, "Edit by curvature");
+    (h, uv)
+}
+
+#[test]
+fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
+    let (mut h, uv) = panel_open();
     let before = h.state().doc.scene.objects[1].surface.control_points();
     let k0 = Measure::Gaussian
         .of(&h.state().doc.scene.objects[1].surface.jet(uv).unwrap().jet)
@@ -53,15 +61,7 @@ fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
 /// one undo step.
 #[test]
 fn dragging_the_target_edits_live() {
-    use egui::{Event, PointerButton};
-    let mut app = App::demo();
-    app.doc.selection.object = Some(1);
-    let mut h = harness(app);
-    let (lo, hi) = h.state().doc.scene.objects[1].surface.domain_bounds();
-    let uv = nalgebra::Point2::from((lo.coords + hi.coords) / 2.0);
-    h.state_mut().apply(Command::SetProbe { object: 1, uv });
-    h.run_steps(2);
-    press(&mut h, "Edit by curvature");
+    let (mut h, uv) = panel_open();
     let before = h.state().doc.scene.objects[1].surface.control_points();
     let measure = |h: &egui_kittest::Harness<'_, App>| {
         let s = &h.state().doc.scene.objects[1].surface;
@@ -74,28 +74,10 @@ fn dragging_the_target_edits_live() {
         .expect("the target field")
         .rect();
     let start = field.center();
-    h.event(Event::PointerMoved(start));
-    h.event(Event::PointerButton {
-        pos: start,
-        button: PointerButton::Primary,
-        pressed: true,
-        modifiers: Default::default(),
-    });
-    h.run_steps(1);
     let mut seen = Vec::new();
-    for k in 1..=6 {
-        h.event(Event::PointerMoved(start + egui::vec2(8.0 * k as f32, 0.0)));
-        h.run_steps(2);
-        seen.push(measure(&h));
-    }
-    let end = start + egui::vec2(48.0, 0.0);
-    h.event(Event::PointerButton {
-        pos: end,
-        button: PointerButton::Primary,
-        pressed: false,
-        modifiers: Default::default(),
+    support::drag(&mut h, start, start + egui::vec2(48.0, 0.0), 6, |h| {
+        seen.push(measure(h))
     });
-    h.run_steps(3);
     // K rose step by step while dragging to the right.
     assert!(seen.windows(2).all(|w| w[1] > w[0]), "{seen:?}");
     assert!(seen[5] > k0, "{k0} then {seen:?}");

@@ -3,7 +3,7 @@
 
 mod support;
 
-use egui::{Event, PointerButton, Pos2};
+use egui::Pos2;
 use egui_kittest::kittest::Queryable;
 use pssurf::surface::Surface;
 use pssurf_app::App;
@@ -85,26 +85,7 @@ fn dragging_the_tangent_point_moves_the_weights() {
     // The widget is drawn just above its caption: drag from its centre towards Q1.
     let start = Pos2::new(label.left() + 75.0, label.top() - 60.0);
     let end = Pos2::new(start.x - 40.0, start.y + 30.0);
-    h.event(Event::PointerMoved(start));
-    h.event(Event::PointerButton {
-        pos: start,
-        button: PointerButton::Primary,
-        pressed: true,
-        modifiers: Default::default(),
-    });
-    h.run_steps(1);
-    for k in 1..=10 {
-        let t = k as f32 / 10.0;
-        h.event(Event::PointerMoved(start + (end - start) * t));
-        h.run_steps(1);
-    }
-    h.event(Event::PointerButton {
-        pos: end,
-        button: PointerButton::Primary,
-        pressed: false,
-        modifiers: Default::default(),
-    });
-    h.run_steps(3);
+    support::drag(&mut h, start, end, 10, |_| {});
     let after = vertex_control(&h.state().doc.scene.objects[1].surface, 3);
     assert_eq!(after.points, before.points);
     assert_ne!(after.weights, before.weights);

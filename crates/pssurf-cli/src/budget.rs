@@ -173,8 +173,9 @@ pub fn load_memory(file_bytes: u64) -> u64 {
     base_memory().saturating_add(file_bytes.saturating_mul(8))
 }
 
-/// Checks that loading the surface file at `path` fits the budget, then loads it.
-pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
+/// Checks that loading the file at `path` fits the budget and returns how many bytes may be
+/// read (a device or pipe has no size: at most what the budget allows).
+fn load_limit(path: &Path) -> Result<u64> {
     if let Ok(meta) = std::fs::metadata(path)
         && meta.is_file()
     {
@@ -186,26 +187,17 @@ pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
         }
         .check()?;
     }
-    // A device or pipe has no size: read at most what the budget allows.
-    let max_bytes = Budget::current().memory.saturating_sub(base_memory()) / 8;
-    Ok(pssurf::io::load_limited(path, max_bytes)?)
+    Ok(Budget::current().memory.saturating_sub(base_memory()) / 8)
+}
+
+/// Checks that loading the surface file at `path` fits the budget, then loads it.
+pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
+    Ok(pssurf::io::load_limited(path, load_limit(path)?)?)
 }
 
 /// Loads a curve file within the memory budget (as [`load_surface`]).
 pub fn load_curve(path: &Path) -> Result<pssurf::nurbs::NurbsCurve> {
-    if let Ok(meta) = std::fs::metadata(path)
-        && meta.is_file()
-    {
-        Estimate {
-            what: format!("loading {}", path.display()),
-            makes: format!("a file of {}", Bytes(meta.len())),
-            memory: load_memory(meta.len()),
-            output: 0,
-        }
-        .check()?;
-    }
-    let max_bytes = Budget::current().memory.saturating_sub(base_memory()) / 8;
-    Ok(pssurf::io::load_curve_limited(path, max_bytes)?)
+    Ok(pssurf::io::load_curve_limited(path, load_limit(path)?)?)
 }
 
 /// The machine's memory in bytes: the smaller of the physical memory and this process's

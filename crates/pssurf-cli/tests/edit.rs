@@ -10,22 +10,21 @@ fn probe(surf: &str, at: &str) -> serde_json::Value {
     serde_json::from_str(&ok(&["probe", surf, "--at", at, "--json"])).unwrap()
 }
 
+/// A UPS hexagon of a wave, written into `dir`.
+fn wave(dir: &std::path::Path) -> String {
+    let surf = s(&dir.join("wave.json"));
+    let height = "0.3*sin(3*x)*cos(2*y)";
+    let args = [
+        "new", "ups", "--sides", "6", "--size", "8", "--height", height, "-o", &surf,
+    ];
+    ok(&args);
+    surf
+}
+
 #[test]
 fn edits_of_a_ups_surface_are_measured_by_probe() {
     let d = tmp();
-    let surf = s(&d.path().join("wave.json"));
-    ok(&[
-        "new",
-        "ups",
-        "--sides",
-        "6",
-        "--size",
-        "8",
-        "--height",
-        "0.3*sin(3*x)*cos(2*y)",
-        "-o",
-        &surf,
-    ]);
+    let surf = wave(d.path());
     for (set, key, value) in [
         ("K=0.5", "K", 0.5),
         ("H=-0.2", "H", -0.2),
@@ -67,19 +66,7 @@ fn edits_of_a_ups_surface_are_measured_by_probe() {
 #[test]
 fn failures_are_one_line_and_write_nothing() {
     let d = tmp();
-    let surf = s(&d.path().join("wave.json"));
-    ok(&[
-        "new",
-        "ups",
-        "--sides",
-        "6",
-        "--size",
-        "8",
-        "--height",
-        "0.3*sin(3*x)*cos(2*y)",
-        "-o",
-        &surf,
-    ]);
+    let surf = wave(d.path());
     let out = d.path().join("out.json");
     for args in [
         vec![

@@ -47,3 +47,36 @@ pub fn click_with(h: &mut Harness<'_, App>, pos: Pos2, modifiers: Modifiers) {
     h.event(Event::ModifiersChanged(Modifiers::NONE));
     h.run_steps(1);
 }
+
+/// A primary-button drag from `from` through `steps` equal moves to `to`, running two frames
+/// after each move and calling `each` after it (for what a test watches during the drag).
+pub fn drag(
+    h: &mut Harness<'_, App>,
+    from: Pos2,
+    to: Pos2,
+    steps: usize,
+    mut each: impl FnMut(&mut Harness<'_, App>),
+) {
+    h.event(Event::PointerMoved(from));
+    h.event(Event::PointerButton {
+        pos: from,
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(1);
+    for k in 1..=steps {
+        h.event(Event::PointerMoved(
+            from + (to - from) * (k as f32 / steps as f32),
+        ));
+        h.run_steps(2);
+        each(h);
+    }
+    h.event(Event::PointerButton {
+        pos: to,
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers: Modifiers::NONE,
+    });
+    h.run_steps(3);
+}
