@@ -114,6 +114,9 @@ enum Command {
     /// Prescribe a curvature at a point (ku, kv, k1, k2, K, H): the control points nearby move
     /// by the smallest smooth change; `--graph-demo` runs the paper's polynomial method.
     Edit(commands::edit::EditArgs),
+    /// Fair a PS, UPS or NURPS surface with its boundary fixed (thesis 5.4.3), with a weight
+    /// between fairness and the original.
+    Fair(commands::fair::FairArgs),
     /// Import the B-spline surfaces of an IGES file as a scene (one object per surface, in
     /// millimetres); other entities are listed with their counts.
     Import(commands::import::ImportArgs),
@@ -165,6 +168,7 @@ fn main() -> ExitCode {
         Command::Import(a) => commands::import::run(a),
         Command::Approx(a) => commands::approx::run(a),
         Command::Edit(a) => commands::edit::run(a),
+        Command::Fair(a) => commands::fair::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),
@@ -185,7 +189,8 @@ fn main() -> ExitCode {
     }
 }
 
-/// Reports a command-line error in one line (clap's first line, without its usage hint) and
+/// Reports a command-line error in one line (clap's message with what it lists, without its
+/// usage hint) and
 /// exits with status 2; help and version requests print as usual.
 fn usage_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
@@ -197,12 +202,21 @@ fn usage_error(e: clap::Error) -> ExitCode {
     ) {
         e.exit();
     }
+    // The message and what it lists (missing arguments come on the lines after it), up to the
+    // usage hint, joined into one line.
     let text = e.render().to_string();
-    let first = text
+    let message: Vec<&str> = text
         .lines()
-        .find(|l| !l.trim().is_empty())
-        .unwrap_or("error");
-    eprintln!("{}", pssurf::text::cut_line(first));
+        .map(str::trim)
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+        .filter(|l| !l.is_empty())
+        .collect();
+    let line = if message.is_empty() {
+        "error".to_string()
+    } else {
+        message.join(" ")
+    };
+    eprintln!("{}", pssurf::text::cut_line(&line));
     ExitCode::from(2)
 }
 

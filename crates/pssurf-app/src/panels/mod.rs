@@ -6,6 +6,7 @@
 
 mod curves;
 mod edit;
+mod fairing;
 mod noise;
 mod nurbs;
 mod subdivision;
@@ -13,6 +14,7 @@ mod wavelet;
 
 pub use curves::CurvesPanel;
 pub use edit::EditPanel;
+pub use fairing::FairingPanel;
 pub use noise::NoisePanel;
 pub use nurbs::NurbsPanel;
 pub use subdivision::SubdivisionPanel;
@@ -46,6 +48,7 @@ pub fn default_panels() -> Vec<Box<dyn Panel>> {
         Box::new(NoisePanel::default()),
         Box::new(CurvesPanel::default()),
         Box::new(EditPanel::default()),
+        Box::new(FairingPanel::default()),
         Box::new(NurbsPanel::default()),
     ]
 }

@@ -7,6 +7,7 @@ pub mod domain;
 pub mod edit;
 pub mod eval;
 pub mod export;
+pub mod fair;
 pub mod fairness;
 pub mod fit;
 pub mod import;

@@ -5,6 +5,7 @@
 pub mod basis;
 pub mod design;
 pub mod energy;
+pub mod fair;
 pub mod from_bezier;
 pub mod net;
 pub mod nurps;
@@ -16,6 +17,7 @@ pub mod spline;
 pub use basis::{PsBasis, SubLocation};
 pub use design::Degenerate;
 pub use energy::{Energy, PieceHessian};
+pub use fair::{FairError, FairOptions, Faired, fair};
 pub use nurps::Nurps;
 pub use ps_triangles::{PsTriangleChoice, PsTriangleQuality};
 pub use refinement::{PsRefinement, SplitRule};
