@@ -59,6 +59,8 @@ pub enum Purpose {
     Add,
     /// Import an IGES file's surfaces into the scene.
     Import,
+    /// Import scattered points (CSV x, y, z) as the PS-spline interpolating them.
+    ImportPoints,
     /// Save the document to it as a file of this kind.
     SaveAs(FileKind),
     /// Use it as the Export dialog's file.
@@ -71,6 +73,7 @@ impl Purpose {
             Purpose::Open => "Open a surface or scene",
             Purpose::Add => "Add the objects of a file",
             Purpose::Import => "Import the surfaces of an IGES file",
+            Purpose::ImportPoints => "Import points (CSV x, y, z) and fit a surface",
             Purpose::SaveAs(FileKind::Surface) => "Save as a surface file",
             Purpose::SaveAs(FileKind::Scene) => "Save as a scene file",
             Purpose::ExportTo => "Export to",
@@ -85,7 +88,7 @@ impl Purpose {
     fn command(self, path: PathBuf) -> Command {
         match self {
             Purpose::Open => Command::Open(path),
-            Purpose::Add | Purpose::Import => Command::AddFile(path),
+            Purpose::Add | Purpose::Import | Purpose::ImportPoints => Command::AddFile(path),
             Purpose::SaveAs(kind) => Command::SaveTo { path, kind },
             Purpose::ExportTo => Command::SetExportPath(path),
         }
@@ -140,14 +143,13 @@ impl Files {
         .show_rename(false)
         .id(egui::Id::unique("file chooser"));
         if purpose != Purpose::ExportTo {
-            let iges = purpose == Purpose::Import;
             dialog = dialog.show_files_filter(Box::new(move |p: &Path| {
                 p.extension().is_some_and(|e| {
                     let iges_file = crate::scene::is_iges_path(p);
-                    if iges {
-                        iges_file
-                    } else {
-                        e.eq_ignore_ascii_case("json") || iges_file
+                    match purpose {
+                        Purpose::Import => iges_file,
+                        Purpose::ImportPoints => crate::scene::is_points_path(p),
+                        _ => e.eq_ignore_ascii_case("json") || iges_file,
                     }
                 })
             }));

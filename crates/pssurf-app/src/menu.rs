@@ -96,6 +96,15 @@ fn file_menu(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
     {
         cx.emit(Command::Choose(Purpose::Import));
     }
+    if ui
+        .button("Import points (CSV)…")
+        .on_hover_text(
+            "Add the PS-spline interpolating scattered points x, y, z (like pssurf fit, with estimated gradients)",
+        )
+        .clicked()
+    {
+        cx.emit(Command::Choose(Purpose::ImportPoints));
+    }
     if let Some(p) = cx.autosave.filter(|p| p.exists())
         && ui
             .button("Recover autosave")

@@ -130,6 +130,12 @@ pub const MAX_FILE_BYTES: u64 = 2 << 30;
 /// The most read from a file without a size (a pipe, a device such as `/dev/zero`).
 pub const MAX_STREAM_BYTES: u64 = 64 << 20;
 
+/// Whether `path` names a file of scattered points (extension `csv`, any case).
+pub fn is_points_path(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
+}
+
 /// Whether `path` names an IGES file (extension `igs` or `iges`, any case).
 pub fn is_iges_path(path: &Path) -> bool {
     path.extension()
@@ -398,7 +404,32 @@ impl Scene {
                 .map(|scene| (scene, FileKind::Scene))
                 .map_err(invalid);
         }
+        if is_points_path(path) {
+            return Scene::from_points(&text, &name)
+                .map(|scene| (scene, FileKind::Scene))
+                .map_err(invalid);
+        }
         Scene::parse(&text, &name).map_err(invalid)
+    }
+
+    /// The PS-spline interpolating the scattered points of a CSV text (columns named x, y, z,
+    /// or the first three; a header line is optional), as one functional object named
+    /// `name (fit)`: `pssurf::scattered::interpolate` with locally estimated gradients, as
+    /// `pssurf fit` does. Errors name the line.
+    pub fn from_points(text: &str, name: &str) -> Result<Scene, String> {
+        let (points, values) = read_points_csv(text)?;
+        let fit = pssurf::scattered::interpolate(
+            &points,
+            &values,
+            pssurf::scattered::GradientMethod::Local,
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(Scene {
+            objects: vec![SceneObject::new(
+                format!("{name} (fit)"),
+                Surface::Functional(fit.spline),
+            )],
+        })
     }
 
     /// The B-spline surfaces of an IGES file's text as objects of group `group` (see
@@ -534,4 +565,60 @@ mod fuzz {
             }
         }
     }
+}
+
+/// The points (x, y) and values z of a CSV text: the columns named x, y and z in a header
+/// line, or the first three. At least three rows; every number finite.
+fn read_points_csv(text: &str) -> Result<(Vec<nalgebra::Point2<f64>>, Vec<f64>), String> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+    let split = |l: &str| -> Vec<String> {
+        l.split([',', ';', '\t'])
+            .map(|f| f.trim().trim_matches('"').to_string())
+            .collect()
+    };
+    let Some((first_no, first)) = lines.next() else {
+        return Err("the file holds no points".into());
+    };
+    let fields = split(first);
+    let numeric = fields.iter().all(|f| f.parse::<f64>().is_ok());
+    let columns = if numeric {
+        [0, 1, 2]
+    } else {
+        let find = |name: &str| fields.iter().position(|f| f.eq_ignore_ascii_case(name));
+        match (find("x"), find("y"), find("z")) {
+            (Some(x), Some(y), Some(z)) => [x, y, z],
+            _ => [0, 1, 2],
+        }
+    };
+    let mut points = Vec::new();
+    let mut values = Vec::new();
+    let rows = if numeric {
+        vec![(first_no, first)]
+    } else {
+        vec![]
+    };
+    for (no, line) in rows.into_iter().chain(lines) {
+        let f = split(line);
+        let get = |c: usize| -> Result<f64, String> {
+            let t = f
+                .get(c)
+                .ok_or(format!("line {}: fewer than 3 columns", no + 1))?;
+            t.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && v.abs() <= pssurf::limits::MAX_VALUE)
+                .ok_or(format!("line {}: `{t}` is not a finite number", no + 1))
+        };
+        points.push(nalgebra::Point2::new(get(columns[0])?, get(columns[1])?));
+        values.push(get(columns[2])?);
+    }
+    if points.len() < 3 {
+        return Err(format!(
+            "{} points: a surface needs at least 3",
+            points.len()
+        ));
+    }
+    Ok((points, values))
 }

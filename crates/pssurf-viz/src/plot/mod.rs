@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::camera::{Camera, Projection, View};
 use crate::colormap::{ColorMap, ColorScale};
-use crate::legend::{Rect, draw_legend};
+use crate::legend::Rect;
 use crate::raster::{GBuffer, ScreenVertex, draw_segment, rasterize, shade_pixels};
 
 mod overlay;
@@ -257,7 +257,20 @@ pub fn plot_sampled(sampled: &SampledSurface, lines: &[Polyline], opts: &PlotOpt
             w: legend_w as f32 - 12.0,
             h: height as f32 - 16.0,
         };
-        draw_legend(&mut pixels, width, area, q.long_name(), &opts.colormap, s);
+        // The data's true min and max, with arrows when the scale clips them (as the
+        // application's legend).
+        let data = values
+            .as_deref()
+            .and_then(|v| crate::colormap::DataRange::of(v, s));
+        crate::legend::draw_legend_data(
+            &mut pixels,
+            width,
+            area,
+            q.long_name(),
+            &opts.colormap,
+            s,
+            data.as_ref(),
+        );
     }
     Picture {
         width,
