@@ -499,6 +499,62 @@ impl Scene {
     }
 }
 
+/// The points (x, y) and values z of a CSV text: the columns named x, y and z in a header
+/// line, or the first three. At least three rows; every number finite.
+fn read_points_csv(text: &str) -> Result<(Vec<nalgebra::Point2<f64>>, Vec<f64>), String> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+    let split = |l: &str| -> Vec<String> {
+        l.split([',', ';', '\t'])
+            .map(|f| f.trim().trim_matches('"').to_string())
+            .collect()
+    };
+    let Some((first_no, first)) = lines.next() else {
+        return Err("the file holds no points".into());
+    };
+    let fields = split(first);
+    let numeric = fields.iter().all(|f| f.parse::<f64>().is_ok());
+    let columns = if numeric {
+        [0, 1, 2]
+    } else {
+        let find = |name: &str| fields.iter().position(|f| f.eq_ignore_ascii_case(name));
+        match (find("x"), find("y"), find("z")) {
+            (Some(x), Some(y), Some(z)) => [x, y, z],
+            _ => [0, 1, 2],
+        }
+    };
+    let mut points = Vec::new();
+    let mut values = Vec::new();
+    let rows = if numeric {
+        vec![(first_no, first)]
+    } else {
+        vec![]
+    };
+    for (no, line) in rows.into_iter().chain(lines) {
+        let f = split(line);
+        let get = |c: usize| -> Result<f64, String> {
+            let t = f
+                .get(c)
+                .ok_or(format!("line {}: fewer than 3 columns", no + 1))?;
+            t.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && v.abs() <= pssurf::limits::MAX_VALUE)
+                .ok_or(format!("line {}: `{t}` is not a finite number", no + 1))
+        };
+        points.push(nalgebra::Point2::new(get(columns[0])?, get(columns[1])?));
+        values.push(get(columns[2])?);
+    }
+    if points.len() < 3 {
+        return Err(format!(
+            "{} points: a surface needs at least 3",
+            points.len()
+        ));
+    }
+    Ok((points, values))
+}
+
 #[cfg(test)]
 mod fuzz {
     //! Issue 13: scene files with any number replaced by an extreme one, or any span cut
@@ -564,61 +620,25 @@ mod fuzz {
                 prop_assert!(again.is_ok(), "{:?}", again.err());
             }
         }
-    }
-}
 
-/// The points (x, y) and values z of a CSV text: the columns named x, y and z in a header
-/// line, or the first three. At least three rows; every number finite.
-fn read_points_csv(text: &str) -> Result<(Vec<nalgebra::Point2<f64>>, Vec<f64>), String> {
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-    let split = |l: &str| -> Vec<String> {
-        l.split([',', ';', '\t'])
-            .map(|f| f.trim().trim_matches('"').to_string())
-            .collect()
-    };
-    let Some((first_no, first)) = lines.next() else {
-        return Err("the file holds no points".into());
-    };
-    let fields = split(first);
-    let numeric = fields.iter().all(|f| f.parse::<f64>().is_ok());
-    let columns = if numeric {
-        [0, 1, 2]
-    } else {
-        let find = |name: &str| fields.iter().position(|f| f.eq_ignore_ascii_case(name));
-        match (find("x"), find("y"), find("z")) {
-            (Some(x), Some(y), Some(z)) => [x, y, z],
-            _ => [0, 1, 2],
+        /// Any text imported as points gives a scene or an error, never a panic.
+        #[test]
+        fn any_points_text_gives_a_scene_or_an_error(
+            rows in proptest::collection::vec(
+                proptest::collection::vec(
+                    prop_oneof![
+                        (-10.0f64..10.0).prop_map(|x| x.to_string()),
+                        proptest::sample::select(EXTREMES.to_vec()).prop_map(str::to_string),
+                        Just("x".to_string()),
+                        Just(String::new()),
+                    ],
+                    0..5,
+                ),
+                0..12,
+            )
+        ) {
+            let text: String = rows.iter().map(|r| r.join(",") + "\n").collect();
+            let _ = Scene::from_points(&text, "fuzz");
         }
-    };
-    let mut points = Vec::new();
-    let mut values = Vec::new();
-    let rows = if numeric {
-        vec![(first_no, first)]
-    } else {
-        vec![]
-    };
-    for (no, line) in rows.into_iter().chain(lines) {
-        let f = split(line);
-        let get = |c: usize| -> Result<f64, String> {
-            let t = f
-                .get(c)
-                .ok_or(format!("line {}: fewer than 3 columns", no + 1))?;
-            t.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite() && v.abs() <= pssurf::limits::MAX_VALUE)
-                .ok_or(format!("line {}: `{t}` is not a finite number", no + 1))
-        };
-        points.push(nalgebra::Point2::new(get(columns[0])?, get(columns[1])?));
-        values.push(get(columns[2])?);
     }
-    if points.len() < 3 {
-        return Err(format!(
-            "{} points: a surface needs at least 3",
-            points.len()
-        ));
-    }
-    Ok((points, values))
 }
