@@ -15,7 +15,7 @@ use crate::document::{Document, Selection};
 use crate::edit::VertexControl;
 use crate::files::{Answer, Purpose};
 use crate::probe::{Probe, ProbeSettings};
-use crate::runtime::Runtime;
+use crate::runtime::{RegionMark, Runtime};
 use crate::scene::{FileKind, Material, SceneObject, Transform};
 use crate::state::ViewState;
 
@@ -61,20 +61,6 @@ impl Shape {
     pub fn is_solid_quadric(self) -> bool {
         matches!(self, Shape::Cylinder | Shape::Cone | Shape::Sphere)
     }
-}
-
-/// The region of an edit by curvature, drawn in the domain view while its panel is open.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RegionMark {
-    /// The object's identity (see `SceneObject::id`).
-    pub id: u64,
-    /// The centre (the probe's parameters).
-    pub uv: Point2<f64>,
-    /// The radius in parameter units.
-    pub radius: f64,
-    /// The frame (egui pass) that set it: the domain view draws marks of the last two passes
-    /// only, so that the mark goes away with its panel.
-    pub pass: u64,
 }
 
 /// What to export.

@@ -7,9 +7,25 @@ use eframe::egui_wgpu::RenderState;
 use std::sync::Arc;
 
 use crate::cache::GeometryCache;
+use nalgebra::Point2;
+
 use crate::curves::CurvesState;
 use crate::gpu::LineSet;
 use crate::probe::ProbeState;
+
+/// The region of an edit by curvature, drawn in the domain view while its panel is open.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegionMark {
+    /// The object's identity (see `SceneObject::id`).
+    pub id: u64,
+    /// The centre (the probe's parameters).
+    pub uv: Point2<f64>,
+    /// The radius in parameter units.
+    pub radius: f64,
+    /// The frame (egui pass) that set it: the domain view draws marks of the last two passes
+    /// only, so that the mark goes away with its panel.
+    pub pass: u64,
+}
 
 /// The application's rebuildable resources.
 #[derive(Default)]
@@ -25,7 +41,7 @@ pub struct Runtime {
     /// The generations `extra` was made from.
     extra_key: (u64, u64),
     /// The region of the edit-by-curvature panel, while it is open.
-    pub region: Option<crate::command::RegionMark>,
+    pub region: Option<RegionMark>,
     /// The wgpu device and queue, when the 3D view's GPU resources are installed (the view
     /// and the picture export need them).
     pub gpu: Option<RenderState>,

@@ -9,7 +9,8 @@ use pssurf::edit::{EditRequest, LocalEdit, Measure, edit_locally};
 use pssurf::surface::{ParametricSurface, Surface};
 
 use super::{Panel, load_settings, save_settings};
-use crate::command::{Command, RegionMark, ViewContext};
+use crate::command::{Command, ViewContext};
+use crate::runtime::RegionMark;
 
 /// The settings of the panel.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -7,12 +7,10 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::format::{
-    FORMAT_NAME, FileError, FormatError, check_header, invalid, read_text_limited, syntax,
+    CURVE_KIND, FORMAT_NAME, FileError, FormatError, check_header, invalid, read_text_limited,
+    syntax,
 };
 use crate::nurbs::{NurbsCurve, NurbsError};
-
-/// The `kind` of a curve file.
-pub const CURVE_KIND: &str = "curve";
 
 /// The `curve` section: a degree, control points, optional knots (absent: a Bézier curve on
 /// [0, 1], degree = points − 1) and optional weights (a rational curve).

@@ -22,6 +22,9 @@ pub const FORMAT_VERSION: u32 = 1;
 /// The format's name, the value of the `format` field.
 pub(crate) const FORMAT_NAME: &str = "pssurf";
 
+/// The `kind` of a curve file (`super::curve_file`), which a surface reader names as such.
+pub const CURVE_KIND: &str = "curve";
+
 /// What is wrong with a file's contents; `at` is a JSON path such as `domain.triangles[5]`.
 #[derive(Debug, Error, PartialEq)]
 pub enum FormatError {
@@ -234,7 +237,7 @@ pub(crate) fn invalid(at: impl Into<String>, message: impl std::fmt::Display) ->
 /// first problem and where it is.
 pub fn from_json_str(text: &str) -> Result<Surface, FormatError> {
     let header = check_header(text)?;
-    if header.kind.as_ref().and_then(|k| k.as_str()) == Some(super::curve_file::CURVE_KIND) {
+    if header.kind.as_ref().and_then(|k| k.as_str()) == Some(CURVE_KIND) {
         return Err(invalid(
             "kind",
             "\"curve\": a curve file, not a surface (`pssurf info` reads it)",

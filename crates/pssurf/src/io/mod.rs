@@ -10,15 +10,14 @@ mod scene;
 pub use atomic::{
     Durability, atomic_write, atomic_write_bytes, io_cause, remove_pending_temp_files,
 };
-pub use curve_file::{
-    CURVE_KIND, curve_from_json, curve_to_json, is_curve, load_curve_limited, save_curve,
-};
+pub use curve_file::{curve_from_json, curve_to_json, is_curve, load_curve_limited, save_curve};
 pub use curves::{
     CURVES_HEADER, CurvesError, MAX_CURVE_POINTS, read_curves_csv, write_curves_csv,
     write_curves_obj,
 };
 pub use format::{
-    FORMAT_VERSION, FileError, FormatError, from_json_str, load, load_limited, save, to_json_string,
+    CURVE_KIND, FORMAT_VERSION, FileError, FormatError, from_json_str, load, load_limited, save,
+    to_json_string,
 };
 pub use scene::{
     SCENE_FORMAT, SCENE_VERSION, SceneEntry, is_scene, scene_from_json, scene_to_json,
