@@ -117,6 +117,9 @@ enum Command {
     /// Fair a PS, UPS or NURPS surface with its boundary fixed (thesis 5.4.3), with a weight
     /// between fairness and the original.
     Fair(commands::fair::FairArgs),
+    /// Subdivide a polygon (CSV): Chaikin, cubic B-spline or the four-point scheme, open or
+    /// closed.
+    Curve(commands::curve::CurveArgs),
     /// Import the B-spline surfaces of an IGES file as a scene (one object per surface, in
     /// millimetres); other entities are listed with their counts.
     Import(commands::import::ImportArgs),
@@ -169,6 +172,7 @@ fn main() -> ExitCode {
         Command::Approx(a) => commands::approx::run(a),
         Command::Edit(a) => commands::edit::run(a),
         Command::Fair(a) => commands::fair::run(a),
+        Command::Curve(a) => commands::curve::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),
         Command::Fairness(a) => commands::fairness::run(a),

@@ -32,6 +32,7 @@ pub mod ps;
 pub mod quadrature;
 pub mod scattered;
 pub mod sparse;
+pub mod subdivision;
 pub mod surface;
 pub mod text;
 pub mod triangulation;

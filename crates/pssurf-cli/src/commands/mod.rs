@@ -2,6 +2,7 @@
 
 pub mod approx;
 pub mod curvature;
+pub mod curve;
 pub mod denoise;
 pub mod domain;
 pub mod edit;

@@ -1,0 +1,82 @@
+//! End-to-end tests of `pssurf curve --subdivide` (issue 20, part 2).
+
+mod common;
+
+use common::*;
+
+#[test]
+fn polygons_subdivide_to_the_counts_of_their_schemes_and_four_point_interpolates() {
+    let d = tmp();
+    let poly = s(&write(d.path(), "p.csv", "x,y\n0,0\n1,0\n2,1\n3,3\n4,6\n"));
+    for (scheme, closed, times, count) in [
+        ("chaikin", false, 2, 14),
+        ("cubic", false, 1, 7),
+        ("four-point", false, 3, 33),
+        ("chaikin", true, 3, 40),
+        ("cubic", true, 1, 10),
+    ] {
+        let out = d.path().join("o.csv");
+        let times = times.to_string();
+        let mut args = vec!["curve", &poly, "--subdivide", scheme, "--times", &times];
+        if closed {
+            args.push("--closed");
+        }
+        let o = s(&out);
+        args.extend(["-o", &o]);
+        ok_report(&args);
+        let text = std::fs::read_to_string(&out).unwrap();
+        assert_eq!(text.lines().count(), count + 1, "{scheme} closed={closed}");
+    }
+    // The four-point scheme keeps the polygon's points: every 8th point after 3 steps.
+    let out = d.path().join("f.csv");
+    ok_report(&[
+        "curve",
+        &poly,
+        "--subdivide",
+        "four-point",
+        "--times",
+        "3",
+        "-o",
+        &s(&out),
+    ]);
+    let rows: Vec<Vec<f64>> = std::fs::read_to_string(&out)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    for (i, (x, y)) in [(0.0, 0.0), (1.0, 0.0), (2.0, 1.0), (3.0, 3.0), (4.0, 6.0)]
+        .iter()
+        .enumerate()
+    {
+        assert_eq!((rows[8 * i][0], rows[8 * i][1]), (*x, *y));
+    }
+    for args in [
+        vec![
+            "curve",
+            &poly,
+            "--subdivide",
+            "cubic",
+            "--times",
+            "41",
+            "-o",
+            "x.csv",
+        ],
+        vec![
+            "curve",
+            &poly,
+            "--subdivide",
+            "four-point",
+            "--tension",
+            "nan",
+            "-o",
+            "x.csv",
+        ],
+    ] {
+        let msg = fails(&args);
+        assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");
+    }
+    let two = s(&write(d.path(), "two.csv", "x,y\n0,0\n1,0\n"));
+    let msg = fails(&["curve", &two, "--subdivide", "cubic", "-o", "x.csv"]);
+    assert!(msg.contains("at least 4 points"), "{msg}");
+}
