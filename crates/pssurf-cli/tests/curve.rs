@@ -80,3 +80,33 @@ fn polygons_subdivide_to_the_counts_of_their_schemes_and_four_point_interpolates
     let msg = fails(&["curve", &two, "--subdivide", "cubic", "-o", "x.csv"]);
     assert!(msg.contains("at least 4 points"), "{msg}");
 }
+
+/// `--comb` on a rational quadratic arc of radius 2: every tooth has κ = 1/2; SVG and CSV.
+#[test]
+fn the_comb_of_an_arc_is_constant() {
+    let d = tmp();
+    let arc = s(&write(
+        d.path(),
+        "arc.json",
+        r#"{"format":"pssurf","version":1,"kind":"curve","curve":{"degree":2,"points":[[2,0,0],[2,2,0],[0,2,0]],"weights":[1,0.7071067811865476,1]}}"#,
+    ));
+    let csv = d.path().join("comb.csv");
+    ok_report(&["curve", &arc, "--comb", "--scale", "1", "-o", &s(&csv)]);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut teeth = 0;
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        assert!((v[4] - 0.5).abs() < 1e-12, "{line}");
+        // The tip is outward, on the circle of radius 2 + 1 × 0.5.
+        let r = (v[5] * v[5] + v[6] * v[6]).sqrt();
+        assert!((r - 2.5).abs() < 1e-12, "{line}");
+        teeth += 1;
+    }
+    assert_eq!(teeth, 25);
+    let svg = d.path().join("comb.svg");
+    ok_report(&["curve", &arc, "--comb", "-o", &s(&svg)]);
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    let poly = s(&write(d.path(), "p.csv", "x,y\n0,0\n1,0\n2,1\n"));
+    let msg = fails(&["curve", &poly, "--comb", "-o", "x.svg"]);
+    assert_eq!(msg.trim().lines().count(), 1, "{msg}");
+}

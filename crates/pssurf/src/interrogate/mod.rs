@@ -5,6 +5,7 @@
 //! [`crate::surface::PiecewiseSurface`] (the smooth pieces), so every kind of
 //! [`crate::surface::Surface`] is interrogated by the same code.
 
+pub mod comb;
 pub(crate) mod continuation;
 pub mod curvature;
 pub mod curve;
