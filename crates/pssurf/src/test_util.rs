@@ -246,3 +246,31 @@ pub fn interpolating_bezier(
         .collect();
     crate::bezier::BezierTriangle::new(t, m, points)
 }
+
+/// The functional and parametric PS interpolants of the graph of a height function `f`, which
+/// returns (value, ∂/∂x, ∂/∂y), on `basis`.
+pub fn graph_splines(
+    basis: &std::sync::Arc<crate::ps::PsBasis>,
+    f: impl Fn(Point2<f64>) -> (f64, f64, f64) + Sync,
+) -> (
+    crate::ps::PsSpline<f64>,
+    crate::ps::PsSpline<nalgebra::Vector3<f64>>,
+) {
+    use crate::ps::{Hermite, PsSpline};
+    use nalgebra::Vector3;
+    let functional = PsSpline::interpolate(basis.clone(), |p| {
+        let (value, dx, dy) = f(p);
+        Hermite { value, dx, dy }
+    })
+    .unwrap();
+    let parametric = PsSpline::interpolate(basis.clone(), |p| {
+        let (v, dx, dy) = f(p);
+        Hermite {
+            value: Vector3::new(p.x, p.y, v),
+            dx: Vector3::new(1.0, 0.0, dx),
+            dy: Vector3::new(0.0, 1.0, dy),
+        }
+    })
+    .unwrap();
+    (functional, parametric)
+}

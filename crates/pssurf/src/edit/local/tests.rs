@@ -21,20 +21,7 @@ fn surfaces(seed: u64) -> Vec<(&'static str, Surface)> {
     let mut r = rng(seed);
     let tri = meshes::uniform_square(&mut r, 300);
     let basis = Arc::new(PsBasis::optimal(tri).unwrap());
-    let functional = PsSpline::interpolate(basis.clone(), |p| {
-        let (v, dx, dy) = f(p);
-        Hermite { value: v, dx, dy }
-    })
-    .unwrap();
-    let parametric = PsSpline::interpolate(basis.clone(), |p| {
-        let (v, dx, dy) = f(p);
-        Hermite {
-            value: Vector3::new(p.x, p.y, v),
-            dx: Vector3::new(1.0, 0.0, dx),
-            dy: Vector3::new(0.0, 1.0, dy),
-        }
-    })
-    .unwrap();
+    let (functional, parametric) = graph_splines(&basis, f);
     let n = basis.triangulation().vertex_count();
     let weights = (0..n)
         .map(|_| std::array::from_fn(|_| uniform(&mut r, 0.8, 1.25)))

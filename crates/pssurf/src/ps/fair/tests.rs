@@ -17,20 +17,7 @@ fn noisy(seed: u64) -> Vec<(&'static str, Surface)> {
         let (s, c) = (3.0 * p.x).sin_cos();
         (0.2 * s * p.y, 0.6 * c * p.y, 0.2 * s)
     };
-    let functional = PsSpline::interpolate(basis.clone(), |p| {
-        let (value, dx, dy) = f(p);
-        Hermite { value, dx, dy }
-    })
-    .unwrap();
-    let parametric = PsSpline::interpolate(basis.clone(), |p| {
-        let (v, dx, dy) = f(p);
-        Hermite {
-            value: Vector3::new(p.x, p.y, v),
-            dx: Vector3::new(1.0, 0.0, dx),
-            dy: Vector3::new(0.0, 1.0, dy),
-        }
-    })
-    .unwrap();
+    let (functional, parametric) = graph_splines(&basis, f);
     let tri = basis.triangulation();
     let mut out = Vec::new();
     let mut fc = functional.coefficients().to_vec();
