@@ -1048,6 +1048,11 @@ fn info_reads_curve_files() {
     assert_eq!(info["degree"], 2);
     let length = info["length"].as_f64().unwrap();
     assert!((length - std::f64::consts::PI).abs() < 1e-13, "{length}");
+    assert_eq!(
+        info["inflections"],
+        serde_json::json!([]),
+        "a circular arc is convex"
+    );
     let msg = fails(&["plot", &s(&path), "-o", "x.png"]);
     assert!(msg.contains("a curve file"), "{msg}");
 }

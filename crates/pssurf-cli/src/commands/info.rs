@@ -145,8 +145,10 @@ struct CurveInfo {
     parameter_domain: [f64; 2],
     control_min: [f64; 3],
     control_max: [f64; 3],
-    /// The arc length (Gauss–Legendre with 16 nodes per knot span).
+    /// The arc length (adaptive Gauss–Legendre to 1e-12 of the control polygon's extent).
     length: f64,
+    /// The inflection points' parameters, for a planar curve (None for a space curve).
+    inflections: Option<Vec<f64>>,
 }
 
 /// Whether the file's first 4 KiB name it a pssurf curve file.
@@ -167,21 +169,11 @@ fn curve_info(args: &InfoArgs) -> Result<()> {
     let pts = c.points();
     let lo = pts.iter().fold(pts[0], |a, p| a.inf(p));
     let hi = pts.iter().fold(pts[0], |a, p| a.sup(p));
-    let gauss = pssurf::quadrature::gauss_legendre(16);
+    let size = (hi - lo).norm();
+    let length = pssurf::interrogate::curve_shape::arc_length(&c, 1e-12 * size.max(1e-300)).length;
     let knots = k.knots();
-    let length: f64 = (0..knots.len() - 1)
-        .filter(|&i| knots[i + 1] > knots[i])
-        .map(|i| {
-            let (a, b) = (knots[i], knots[i + 1]);
-            gauss
-                .iter()
-                .map(|&(x, w)| {
-                    let d = c.derivatives(a + x * (b - a)).map_or(0.0, |d| d[1].norm());
-                    w * d * (b - a)
-                })
-                .sum::<f64>()
-        })
-        .sum();
+    let inflections =
+        plane_normal(pts).map(|n| pssurf::interrogate::curve_shape::inflections(&c, n, 32));
     let (a, b) = c.domain();
     let info = CurveInfo {
         file: args.surface.display().to_string(),
@@ -196,6 +188,7 @@ fn curve_info(args: &InfoArgs) -> Result<()> {
         control_min: lo.into(),
         control_max: hi.into(),
         length,
+        inflections,
     };
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&info)?)?;
@@ -224,7 +217,39 @@ fn curve_info(args: &InfoArgs) -> Result<()> {
         info.spans
     )?;
     outln!("length               {}", info.length)?;
+    match &info.inflections {
+        Some(t) if t.is_empty() => outln!("inflections          none (a planar curve)")?,
+        Some(t) => outln!(
+            "inflections          {} at t = {}",
+            t.len(),
+            t.iter()
+                .map(|x| format!("{x}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )?,
+        None => outln!("inflections          - (a space curve)")?,
+    }
     Ok(())
+}
+
+/// The normal of the plane that holds all the control points (to 1e-12 of their extent), if
+/// there is one; a straight curve's plane is taken as (x, y)'s if it lies in it.
+fn plane_normal(pts: &[nalgebra::Vector3<f64>]) -> Option<nalgebra::Vector3<f64>> {
+    let o = pts[0];
+    let size = pts.iter().map(|p| (p - o).norm()).fold(0.0, f64::max);
+    let mut normal = None;
+    'find: for a in &pts[1..] {
+        for b in pts {
+            if let Some(n) = (a - o).cross(&(b - o)).try_normalize(1e-9 * size * size) {
+                normal = Some(n);
+                break 'find;
+            }
+        }
+    }
+    let n = normal.unwrap_or_else(nalgebra::Vector3::z);
+    pts.iter()
+        .all(|p| (p - o).dot(&n).abs() <= 1e-12 * size.max(1e-300))
+        .then_some(n)
 }
 
 /// The surfaces of a surface file (one, named by the file) or of a scene file, with names.

@@ -9,6 +9,7 @@ pub mod comb;
 pub(crate) mod continuation;
 pub mod curvature;
 pub mod curve;
+pub mod curve_shape;
 pub mod even_lines;
 pub mod fairness;
 pub mod field;
