@@ -274,3 +274,21 @@ pub fn graph_splines(
     .unwrap();
     (functional, parametric)
 }
+
+/// The circular arc of `radius` about the origin in the (x, y) plane from angle −`half` to
+/// `half` (< π/2), as a rational quadratic NURBS curve (middle weight cos `half`).
+pub fn circular_arc(radius: f64, half: f64) -> crate::nurbs::NurbsCurve {
+    use nalgebra::Vector3;
+    let (s, c) = half.sin_cos();
+    crate::nurbs::NurbsCurve::try_new(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector3::new(c, -s, 0.0) * radius,
+            Vector3::new(1.0 / c, 0.0, 0.0) * radius,
+            Vector3::new(c, s, 0.0) * radius,
+        ],
+        Some(vec![1.0, c, 1.0]),
+    )
+    .unwrap()
+}

@@ -25,20 +25,7 @@ pub struct CombTooth {
 /// The comb of `c` with `per_span` samples on every non-empty knot span (ends included) and
 /// tooth length `scale` · κ.
 pub fn curvature_comb(c: &NurbsCurve, per_span: usize, scale: f64) -> Vec<CombTooth> {
-    let knots = c.knot_vector().knots();
-    let (lo, hi) = c.domain();
-    let mut params: Vec<f64> = Vec::new();
-    for w in knots.windows(2) {
-        let (a, b) = (w[0].max(lo), w[1].min(hi));
-        if b <= a {
-            continue;
-        }
-        for k in 0..per_span.max(1) {
-            params.push(a + (b - a) * k as f64 / per_span.max(1) as f64);
-        }
-    }
-    params.push(hi);
-    params
+    super::curve_shape::span_samples(c, per_span)
         .into_iter()
         .filter_map(|t| c.derivatives(t).map(|d| tooth(t, d, scale)))
         .collect()
@@ -84,19 +71,7 @@ mod tests {
         for _ in 0..10 {
             let radius = uniform(&mut r, 0.1, 10.0);
             let half = uniform(&mut r, 0.1, 1.4); // half the arc's angle
-            let (s, c) = half.sin_cos();
-            let points = vec![
-                Vector3::new(c, -s, 0.0) * radius,
-                Vector3::new(1.0 / c, 0.0, 0.0) * radius,
-                Vector3::new(c, s, 0.0) * radius,
-            ];
-            let curve = NurbsCurve::try_new(
-                2,
-                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-                points,
-                Some(vec![1.0, c, 1.0]),
-            )
-            .unwrap();
+            let curve = circular_arc(radius, half);
             let scale = uniform(&mut r, 0.1, 2.0);
             let comb = curvature_comb(&curve, 40, scale);
             assert_eq!(comb.len(), 41);

@@ -60,14 +60,8 @@ pub fn arc_length(c: &NurbsCurve, tolerance: f64) -> ArcLength {
     out
 }
 
-/// The parameters where a planar curve's signed curvature (c' × c'') · `normal` changes
-/// sign: sign changes on `per_span` samples of every knot span, refined by bisection to the
-/// last bit. Zeros that the curvature touches without crossing are not inflections.
-pub fn inflections(c: &NurbsCurve, normal: Vector3<f64>, per_span: usize) -> Vec<f64> {
-    let signed = |t: f64| {
-        c.derivatives(t)
-            .map_or(0.0, |d| d[1].cross(&d[2]).dot(&normal))
-    };
+/// `per_span` equally spaced parameters on every non-empty knot span of `c`, and its end.
+pub(crate) fn span_samples(c: &NurbsCurve, per_span: usize) -> Vec<f64> {
     let (lo, hi) = c.domain();
     let mut params = Vec::new();
     for w in c.knot_vector().knots().windows(2) {
@@ -80,6 +74,18 @@ pub fn inflections(c: &NurbsCurve, normal: Vector3<f64>, per_span: usize) -> Vec
         }
     }
     params.push(hi);
+    params
+}
+
+/// The parameters where a planar curve's signed curvature (c' × c'') · `normal` changes
+/// sign: sign changes on `per_span` samples of every knot span, refined by bisection to the
+/// last bit. Zeros that the curvature touches without crossing are not inflections.
+pub fn inflections(c: &NurbsCurve, normal: Vector3<f64>, per_span: usize) -> Vec<f64> {
+    let signed = |t: f64| {
+        c.derivatives(t)
+            .map_or(0.0, |d| d[1].cross(&d[2]).dot(&normal))
+    };
+    let params = span_samples(c, per_span);
     let mut out = Vec::new();
     let mut previous: Option<(f64, f64)> = None;
     for t in params {
@@ -126,18 +132,7 @@ mod tests {
         for _ in 0..10 {
             let radius = uniform(&mut r, 0.1, 10.0);
             let half = uniform(&mut r, 0.1, 1.4);
-            let (s, c) = half.sin_cos();
-            let arc = NurbsCurve::try_new(
-                2,
-                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-                vec![
-                    Vector3::new(c, -s, 0.0) * radius,
-                    Vector3::new(1.0 / c, 0.0, 0.0) * radius,
-                    Vector3::new(c, s, 0.0) * radius,
-                ],
-                Some(vec![1.0, c, 1.0]),
-            )
-            .unwrap();
+            let arc = circular_arc(radius, half);
             let a = arc_length(&arc, 1e-13 * radius);
             assert_near!(a.length, 2.0 * half * radius, 1e-12 * radius);
             assert!(a.error <= 1e-12 * radius);
