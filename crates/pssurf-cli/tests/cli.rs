@@ -458,10 +458,11 @@ fn load_errors_are_printed_once() {
     let missing = d.path().join("missing.json");
     for (file, cause) in [
         (s(&truncated), "EOF while parsing"),
-        (s(&missing), "No such file"),
+        (s(&missing), "no such file or folder"),
     ] {
         let err = fails(&["info", &file]);
         assert_eq!(err.matches(cause).count(), 1, "{err}");
+        assert!(!err.contains("os error"), "{err}");
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     }
 }

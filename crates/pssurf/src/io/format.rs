@@ -57,8 +57,8 @@ pub enum FormatError {
 /// A file could not be read or written.
 #[derive(Debug, Error)]
 pub enum FileError {
-    /// The operating system refused.
-    #[error("{}: {cause}", path.display())]
+    /// The operating system refused (the cause in words, without the OS error number).
+    #[error("{}: {}", path.display(), super::io_cause(cause))]
     Io {
         /// The file.
         path: PathBuf,
