@@ -145,8 +145,13 @@ impl<R: std::io::Read> std::io::Read for Bounded<R> {
 /// Opens a CSV file for reading at most what the memory budget allows (24 bytes of memory per
 /// byte of text at most, see [`Table::read_columns`]).
 fn open_bounded(path: &Path) -> Result<Bounded<std::io::BufReader<std::fs::File>>> {
-    let file =
-        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let file = std::fs::File::open(path).map_err(|e| {
+        anyhow::anyhow!(
+            "cannot read {}: {}",
+            path.display(),
+            pssurf::io::io_cause(&e)
+        )
+    })?;
     let budget = crate::budget::Budget::current().memory;
     Ok(Bounded {
         inner: std::io::BufReader::new(file),

@@ -106,6 +106,20 @@ fn the_comb_of_an_arc_is_constant() {
     let svg = d.path().join("comb.svg");
     ok_report(&["curve", &arc, "--comb", "-o", &s(&svg)]);
     assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    let msg = fails(&["curve", &arc, "--comb", "--scale", "1e308", "-o", "x.csv"]);
+    assert!(msg.contains("smaller scale"), "{msg}");
+    let msg = fails(&[
+        "curve",
+        "no-such.csv",
+        "--subdivide",
+        "cubic",
+        "-o",
+        "x.csv",
+    ]);
+    assert!(
+        msg.contains("no such file") && !msg.contains("os error"),
+        "{msg}"
+    );
     let poly = s(&write(d.path(), "p.csv", "x,y\n0,0\n1,0\n2,1\n"));
     let msg = fails(&["curve", &poly, "--comb", "-o", "x.svg"]);
     assert_eq!(msg.trim().lines().count(), 1, "{msg}");

@@ -99,6 +99,8 @@ fn failures_are_one_line_and_write_nothing() {
         ],
         vec!["edit", &surf, "--set", "K=1"],
         vec!["edit", "--graph-demo", "--set", "cu=1e6"],
+        vec!["edit", &surf, "--at", "12,7", "--set", "H=1e308"],
+        vec!["edit", "--graph-demo", "--set", "cu=1", "--region", "1e308"],
         vec![
             "edit",
             "--graph-demo",
@@ -147,4 +149,20 @@ fn the_graph_demo_writes_nurbs_surfaces_with_the_asked_curvature() {
         assert_eq!(info["kind"], "nurbs");
         assert_eq!(info["valid"], true);
     }
+}
+
+/// A region larger than the domain is the whole domain (the bump's window is not stretched
+/// flat): the edit still reaches its target.
+#[test]
+fn a_huge_region_is_the_whole_domain() {
+    let d = tmp();
+    let surf = wave(d.path());
+    let out = s(&d.path().join("h.json"));
+    let report = ok_report(&[
+        "edit", &surf, "--at", "12,7", "--set", "H=-0.5", "--region", "1e308", "-o", &out,
+    ]);
+    assert!(report.contains("(asked -0.5)"), "{report}");
+    let p: serde_json::Value =
+        serde_json::from_str(&ok(&["probe", &out, "--at", "12,7", "--json"])).unwrap();
+    assert!((p["H"].as_f64().unwrap() + 0.5).abs() < 1e-8, "{p}");
 }

@@ -60,6 +60,7 @@ fn fairing_a_noisy_ups_surface_lowers_its_energy_and_keeps_its_kind() {
     for args in [
         vec!["fair", &noisy, "--weight", "-1", "-o", "x.json"],
         vec!["fair", &noisy, "--weight", "nan", "-o", "x.json"],
+        vec!["fair", &noisy, "--weight", "1e308", "-o", "x.json"],
     ] {
         let msg = fails(&args);
         assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");

@@ -129,6 +129,12 @@ fn comb(args: &CurveArgs) -> Result<()> {
         None => 0.0,
     };
     let teeth = pssurf::interrogate::comb::curvature_comb(&curve, args.samples as usize, scale);
+    if teeth
+        .iter()
+        .any(|t| !t.tip.iter().all(|x| x.abs() <= pssurf::limits::MAX_VALUE))
+    {
+        bail!("--scale {scale}: the longest tooth would reach beyond ±1e60; give a smaller scale");
+    }
     let svg = args
         .output
         .extension()

@@ -23,7 +23,7 @@ pub struct FairArgs {
     #[arg(value_name = "SURF.json")]
     pub input: PathBuf,
     /// How much to stay close to the original: 0 gives the fairest surface with this boundary;
-    /// 1 weighs closeness and fairness about alike; larger values change less.
+    /// 1 weighs closeness and fairness about alike; larger values (up to 1e12) change less.
     #[arg(long, default_value_t = 0.1, allow_hyphen_values = true)]
     pub weight: f64,
     /// The energy to minimise.

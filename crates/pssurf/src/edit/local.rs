@@ -143,7 +143,7 @@ pub struct EditRequest {
     /// Its value.
     pub target: f64,
     /// The region: control groups anchored within this distance of the point (in parameter
-    /// units) may move.
+    /// units) may move; a radius beyond the domain's diagonal is taken as that diagonal.
     pub radius: f64,
     /// Keep s(at) where it is.
     pub keep_point: bool,
@@ -845,6 +845,13 @@ pub fn default_radius(s: &Surface, at: Point2<f64>) -> Option<f64> {
 /// the edit returned as values; on an error the surface is unchanged.
 pub fn edit_locally(surface: &mut Surface, req: &EditRequest) -> Result<LocalEdit, LocalEditError> {
     req.check()?;
+    // A radius beyond the domain's extent means the whole domain: the bump's window is
+    // scaled to the region, so a radius of 1e308 would flatten its quadratic terms to zero.
+    let (lo, hi) = surface.domain_bounds();
+    let req = &EditRequest {
+        radius: req.radius.min((hi - lo).norm()),
+        ..*req
+    };
     let mut solver = Solver::new(surface, req)?;
     let before = req
         .measure

@@ -68,14 +68,15 @@ pub enum FairError {
     /// Not a PS kind.
     #[error("fairing works on PS, UPS and NURPS surfaces, not on a {0}")]
     NotPs(&'static str),
-    /// A weight that is negative or not finite.
-    #[error("the weight must be a finite number ≥ 0, not {0}")]
+    /// A weight that is negative, not finite or beyond 1e12.
+    #[error("the weight must be a number from 0 to 1e12, not {0}")]
     BadWeight(f64),
     /// Every vertex is on the boundary.
     #[error("every vertex lies on the boundary: there is nothing to fair")]
     NoInterior,
-    /// The system is singular (weight 0 and an energy blind to some interior motion).
-    #[error("the fairing system is singular with weight 0 ({0}): give a positive --weight")]
+    /// The system could not be factorised: with weight 0, an energy blind to some interior
+    /// motion; or too little memory.
+    #[error("the fairing system could not be solved ({0}); with weight 0, give a positive weight")]
     Singular(SparseError),
     /// The new control points were refused.
     #[error(transparent)]
@@ -84,7 +85,7 @@ pub enum FairError {
 
 /// Fairs `s` with its boundary fixed (see the module documentation).
 pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
-    if !(opts.weight.is_finite() && opts.weight >= 0.0) {
+    if !(opts.weight >= 0.0 && opts.weight <= 1e12) {
         return Err(FairError::BadWeight(opts.weight));
     }
     let basis = s

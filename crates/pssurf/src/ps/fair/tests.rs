@@ -149,7 +149,7 @@ fn a_quadratic_surface_is_its_own_fairest_surface() {
 #[test]
 fn bad_requests_are_refused() {
     let (_, s) = noisy(1802).remove(0);
-    for weight in [-1.0, f64::NAN, f64::INFINITY] {
+    for weight in [-1.0, f64::NAN, f64::INFINITY, 1e308] {
         let opts = FairOptions {
             weight,
             ..FairOptions::default()
