@@ -117,6 +117,12 @@ enum Command {
     /// Fair a PS, UPS or NURPS surface with its boundary fixed (thesis 5.4.3), with a weight
     /// between fairness and the original.
     Fair(commands::fair::FairArgs),
+    /// Fill a hole bounded by 3 to 6 curves (or a gap between 2) with a UPS patch that meets
+    /// the curves and the normals of the surrounding surfaces (thesis chapter 5).
+    FillHole(commands::hole::FillHoleArgs),
+    /// Run a built-in hole-filling example of the thesis (hole-sphere, two-cylinders,
+    /// prism-cap, two-curve-gap) and write its scene, patches and quality report.
+    Example(commands::hole::ExampleArgs),
     /// Subdivide a polygon (CSV): Chaikin, cubic B-spline or the four-point scheme, open or
     /// closed.
     Curve(commands::curve::CurveArgs),
@@ -172,6 +178,8 @@ fn main() -> ExitCode {
         Command::Approx(a) => commands::approx::run(a),
         Command::Edit(a) => commands::edit::run(a),
         Command::Fair(a) => commands::fair::run(a),
+        Command::FillHole(a) => commands::hole::run_fill(a),
+        Command::Example(a) => commands::hole::run_example(a),
         Command::Curve(a) => commands::curve::run(a),
         Command::Plot(a) => commands::plot::run(a),
         Command::Domain(a) => commands::domain::run(a),

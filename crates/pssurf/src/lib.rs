@@ -20,6 +20,7 @@ pub mod edit;
 #[cfg(feature = "expr")]
 pub mod expr;
 pub mod geometry;
+pub mod hole;
 pub mod iges;
 pub mod interrogate;
 #[cfg(feature = "io")]

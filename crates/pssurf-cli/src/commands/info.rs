@@ -278,7 +278,7 @@ pub fn load_surfaces(path: &std::path::Path) -> Result<Vec<Surface>> {
 }
 
 /// The objects of a scene file (`pssurf import` writes them), or `None` for a surface file.
-fn scene_objects(path: &std::path::Path) -> Result<Option<Vec<pssurf::io::SceneEntry>>> {
+pub(crate) fn scene_objects(path: &std::path::Path) -> Result<Option<Vec<pssurf::io::SceneEntry>>> {
     use std::io::Read;
     let mut head = Vec::new();
     if let Ok(f) = std::fs::File::open(path) {

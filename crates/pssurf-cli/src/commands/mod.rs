@@ -11,6 +11,7 @@ pub mod export;
 pub mod fair;
 pub mod fairness;
 pub mod fit;
+pub mod hole;
 pub mod import;
 pub mod info;
 pub mod new;

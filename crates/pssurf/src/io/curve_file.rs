@@ -16,13 +16,13 @@ use crate::nurbs::{NurbsCurve, NurbsError};
 /// [0, 1], degree = points − 1) and optional weights (a rational curve).
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct CurveSection {
-    degree: usize,
+pub(crate) struct CurveSection {
+    pub(crate) degree: usize,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    knots: Option<Vec<f64>>,
-    points: Vec<[f64; 3]>,
+    pub(crate) knots: Option<Vec<f64>>,
+    pub(crate) points: Vec<[f64; 3]>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    weights: Option<Vec<f64>>,
+    pub(crate) weights: Option<Vec<f64>>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -54,7 +54,11 @@ pub fn curve_from_json(text: &str) -> Result<NurbsCurve, FormatError> {
     if file.kind != CURVE_KIND {
         return Err(invalid("kind", format!("\"{}\" is not a curve", file.kind)));
     }
-    let c = file.curve;
+    curve_from_section(file.curve, "curve")
+}
+
+/// The curve of a `curve` section found at `at` (e.g. `curves[2].normals`), validated.
+pub(crate) fn curve_from_section(c: CurveSection, at: &str) -> Result<NurbsCurve, FormatError> {
     let points: Vec<Vector3<f64>> = c
         .points
         .iter()
@@ -65,7 +69,7 @@ pub fn curve_from_json(text: &str) -> Result<NurbsCurve, FormatError> {
         None => {
             if points.len() != c.degree + 1 {
                 return Err(invalid(
-                    "curve.points",
+                    format!("{at}.points"),
                     format!(
                         "a Bézier curve of degree {} has {} points, not {} (or give knots)",
                         c.degree,
@@ -80,14 +84,14 @@ pub fn curve_from_json(text: &str) -> Result<NurbsCurve, FormatError> {
         }
     };
     NurbsCurve::try_new(c.degree, knots, points, c.weights).map_err(|e| {
-        let at = match &e {
-            NurbsError::Knots { .. } => "curve.knots".to_string(),
-            NurbsError::Count { what, .. } if *what == "weights" => "curve.weights".to_string(),
-            NurbsError::Count { .. } => "curve.points".to_string(),
-            NurbsError::Point(i) => format!("curve.points[{i}]"),
-            NurbsError::Weight(i, _) => format!("curve.weights[{i}]"),
+        let place = match &e {
+            NurbsError::Knots { .. } => format!("{at}.knots"),
+            NurbsError::Count { what, .. } if *what == "weights" => format!("{at}.weights"),
+            NurbsError::Count { .. } => format!("{at}.points"),
+            NurbsError::Point(i) => format!("{at}.points[{i}]"),
+            NurbsError::Weight(i, _) => format!("{at}.weights[{i}]"),
         };
-        invalid(at, e)
+        invalid(place, e)
     })
 }
 

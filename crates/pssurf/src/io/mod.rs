@@ -5,6 +5,7 @@ mod atomic;
 mod curve_file;
 mod curves;
 mod format;
+mod hole_spec;
 mod scene;
 
 pub use atomic::{
@@ -19,6 +20,7 @@ pub use format::{
     CURVE_KIND, FORMAT_VERSION, FileError, FormatError, from_json_str, load, load_limited, save,
     to_json_string,
 };
+pub use hole_spec::{HOLE_KIND, hole_from_json};
 pub use scene::{
     SCENE_FORMAT, SCENE_VERSION, SceneEntry, is_scene, scene_from_json, scene_to_json,
 };

@@ -1,0 +1,77 @@
+//! The quality report of a filling patch in the terms CAD users know: boundary deviation
+//! (G0), normal angle (G1), fairness numbers and the residual per iteration.
+
+use nalgebra::{Point2, Vector3};
+
+use super::HoleError;
+use super::boundary::unit;
+use super::fill::{HoleFill, IterationRecord};
+use crate::interrogate::fairness::{DEFAULT_QUADRATURE_DEGREE, fairness};
+use crate::ups::Ups;
+
+/// Samples per boundary curve for G0 and G1, at the parameters (i + ½)/N (the curves' ends
+/// are corners, where the normals of two surrounding surfaces may differ).
+pub const SAMPLES_PER_CURVE: usize = 256;
+
+/// How well a filling patch meets its boundary data, and how fair it is.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize))]
+pub struct QualityReport {
+    /// The model size (bounding-box diagonal of the boundary curves).
+    pub model_size: f64,
+    /// The largest distance from the patch's boundary to the given curves (model units; from
+    /// each sample point to the closest point of its curve).
+    pub g0_max: f64,
+    /// The root mean square of the same distances.
+    pub g0_rms: f64,
+    /// The largest angle between the patch normal and the given normal at the closest curve
+    /// point, degrees.
+    pub g1_max_degrees: f64,
+    /// The root mean square of the same angles, degrees.
+    pub g1_rms_degrees: f64,
+    /// ∫ H² dA of the patch.
+    pub mean_curvature_squared: f64,
+    /// The thin-plate energy ∫∫ |s_uu|² + 2|s_uv|² + |s_vv|² of the patch.
+    pub thin_plate: f64,
+    /// The residual of every iteration.
+    pub iterations: Vec<IterationRecord>,
+}
+
+/// Measures `patch` (the current patch of `fill`, with any interior method).
+pub fn quality(fill: &HoleFill, patch: &Ups<Vector3<f64>>) -> Result<QualityReport, HoleError> {
+    let ps = patch.to_ps().map_err(HoleError::Ups)?;
+    let corners = fill.domain_corners();
+    let n = corners.len();
+    let b = fill.boundary();
+    let (mut g0, mut g1) = (Vec::new(), Vec::new());
+    for k in 0..n {
+        let (a, c) = (corners[k], corners[(k + 1) % n]);
+        let curve = fill.side_curve(k);
+        for i in 0..SAMPLES_PER_CURVE {
+            let t = (i as f64 + 0.5) / SAMPLES_PER_CURVE as f64;
+            let uv = Point2::from(a.coords * (1.0 - t) + c.coords * t);
+            let jet = ps.jet(uv).map_err(|e| HoleError::Fair(e.to_string()))?.jet;
+            let (t, distance) = b.closest(curve, jet.value, t);
+            g0.push(distance);
+            let given = b.unit_normal(curve, t);
+            if let Some(normal) = unit(jet.dx.cross(&jet.dy))
+                && given.iter().all(|x| x.is_finite())
+            {
+                g1.push(super::boundary::angle_degrees(normal, given));
+            }
+        }
+    }
+    let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt();
+    let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    let f = fairness(&ps, DEFAULT_QUADRATURE_DEGREE);
+    Ok(QualityReport {
+        model_size: b.size(),
+        g0_max: max(&g0),
+        g0_rms: rms(&g0),
+        g1_max_degrees: max(&g1),
+        g1_rms_degrees: rms(&g1),
+        mean_curvature_squared: f.integrals.mean_squared,
+        thin_plate: f.integrals.thin_plate,
+        iterations: fill.history().to_vec(),
+    })
+}
