@@ -159,17 +159,24 @@ impl<C: BoundaryCurve> BoundaryCurve for Reversed<C> {
     }
 }
 
-impl<C: BoundaryCurve + ?Sized> BoundaryCurve for Box<C> {
-    fn point(&self, t: f64) -> Vector3<f64> {
-        (**self).point(t)
-    }
-    fn tangent(&self, t: f64) -> Vector3<f64> {
-        (**self).tangent(t)
-    }
-    fn normal(&self, t: f64) -> Vector3<f64> {
-        (**self).normal(t)
-    }
+/// Curves behind a pointer are curves.
+macro_rules! forward_curve {
+    ($($pointer:ident),*) => {$(
+        impl<C: BoundaryCurve + ?Sized> BoundaryCurve for $pointer<C> {
+            fn point(&self, t: f64) -> Vector3<f64> {
+                (**self).point(t)
+            }
+            fn tangent(&self, t: f64) -> Vector3<f64> {
+                (**self).tangent(t)
+            }
+            fn normal(&self, t: f64) -> Vector3<f64> {
+                (**self).normal(t)
+            }
+        }
+    )*};
 }
+
+forward_curve!(Box, Arc);
 
 impl SurfaceEdge {
     /// The sides of a surface's parameter domain: its outer boundary split at the corners,
@@ -194,17 +201,5 @@ impl SurfaceEdge {
                 to: outer[corners[(c + 1) % corners.len()]],
             })
             .collect()
-    }
-}
-
-impl<C: BoundaryCurve + ?Sized> BoundaryCurve for Arc<C> {
-    fn point(&self, t: f64) -> Vector3<f64> {
-        (**self).point(t)
-    }
-    fn tangent(&self, t: f64) -> Vector3<f64> {
-        (**self).tangent(t)
-    }
-    fn normal(&self, t: f64) -> Vector3<f64> {
-        (**self).normal(t)
     }
 }
