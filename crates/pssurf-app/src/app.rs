@@ -609,12 +609,18 @@ impl App {
             Command::ToggleVisible(objects) => self.toggle_visible(&objects),
             Command::Delete(object) => self.delete(object),
             Command::Add(object) => self.add(object),
+            Command::Insert { objects, what } => self.insert(objects, what),
             Command::ReplaceSurface {
                 object,
                 what,
                 surface,
                 status,
             } => self.replace_surface(object, what, *surface, status),
+            Command::ReplaceSurfaces {
+                surfaces,
+                what,
+                status,
+            } => self.replace_surfaces(surfaces, what, status),
             Command::Frame(target) => self.pending_frame = Some(target),
             Command::Open(path) => self.request(Intent::Open(path)),
             Command::New => self.request(Intent::New),
@@ -731,6 +737,21 @@ impl App {
         self.status = format!("created {name}");
     }
 
+    /// Adds objects where they are as one undo step and selects the first.
+    fn insert(&mut self, objects: Vec<SceneObject>, what: &str) {
+        if objects.is_empty() {
+            return;
+        }
+        let first = self.doc.scene.objects.len();
+        let count = objects.len();
+        let _ = self.doc.edit::<()>(what, |scene| {
+            scene.objects.extend(objects);
+            Ok(())
+        });
+        self.doc.select(Selection::object(first));
+        self.status = format!("{what}: {count} new object(s)");
+    }
+
     /// Adds objects as one undo step, placed together beside the visible objects (to the
     /// right, along x, centred in y), selects the first, and frames the view.
     fn add_objects(&mut self, mut objects: Vec<SceneObject>, what: &str) {
@@ -762,6 +783,25 @@ impl App {
         }
         let _ = self.doc.edit::<()>(what, |scene| {
             *scene.objects[object].surface_mut() = surface;
+            Ok(())
+        });
+        self.status = status;
+    }
+
+    fn replace_surfaces(
+        &mut self,
+        surfaces: Vec<(usize, Box<pssurf::surface::Surface>)>,
+        what: &str,
+        status: String,
+    ) {
+        let count = self.doc.scene.objects.len();
+        if surfaces.is_empty() || surfaces.iter().any(|(o, _)| *o >= count) {
+            return;
+        }
+        let _ = self.doc.edit::<()>(what, |scene| {
+            for (object, surface) in surfaces {
+                *scene.objects[object].surface_mut() = *surface;
+            }
             Ok(())
         });
         self.status = status;

@@ -152,6 +152,24 @@ pub enum Command {
     Delete(usize),
     /// Add objects as one undoable edit and select the first.
     Add(Vec<SceneObject>),
+    /// Replace the surfaces of several objects as one undoable edit (the patches of one
+    /// hole-filling step).
+    ReplaceSurfaces {
+        /// (object index, new surface) pairs.
+        surfaces: Vec<(usize, Box<pssurf::surface::Surface>)>,
+        /// The edit's name for the Edit menu.
+        what: &'static str,
+        /// The status line afterwards.
+        status: String,
+    },
+    /// Add objects where they are (not beside the others: a filling patch belongs in its
+    /// hole) as one undoable edit named `what`, and select the first.
+    Insert {
+        /// The objects.
+        objects: Vec<SceneObject>,
+        /// The edit's name for the Edit menu.
+        what: &'static str,
+    },
     /// Replace an object's surface (a panel's result) as one undoable edit.
     ReplaceSurface {
         /// The object's index.

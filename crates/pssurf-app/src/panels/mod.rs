@@ -7,6 +7,7 @@
 mod curves;
 mod edit;
 mod fairing;
+mod holes;
 mod noise;
 mod nurbs;
 mod subdivision;
@@ -15,6 +16,7 @@ mod wavelet;
 pub use curves::CurvesPanel;
 pub use edit::EditPanel;
 pub use fairing::FairingPanel;
+pub use holes::HolesPanel;
 pub use noise::NoisePanel;
 pub use nurbs::NurbsPanel;
 pub use subdivision::SubdivisionPanel;
@@ -49,6 +51,7 @@ pub fn default_panels() -> Vec<Box<dyn Panel>> {
         Box::new(CurvesPanel::default()),
         Box::new(EditPanel::default()),
         Box::new(FairingPanel::default()),
+        Box::new(HolesPanel::default()),
         Box::new(NurbsPanel::default()),
     ]
 }
