@@ -96,7 +96,13 @@ fn a_specified_hole_is_filled_and_the_patch_loads_again() {
 #[test]
 fn the_examples_meet_the_quality_goals() {
     let d = tmp();
-    for name in ["hole-sphere", "two-cylinders", "prism-cap", "two-curve-gap"] {
+    for name in [
+        "hole-sphere",
+        "two-cylinders",
+        "prism-cap",
+        "two-curve-gap",
+        "degenerate-nurbs",
+    ] {
         let dir = d.path().join(name);
         let report = ok_report(&["example", name, "-o", &s(&dir)]);
         for line in report.lines().filter(|l| l.starts_with("quality")) {
@@ -114,6 +120,11 @@ fn the_examples_meet_the_quality_goals() {
                 .unwrap();
             assert!(g0 <= 1e-4 * size, "{name}: {line}");
         }
+        assert_eq!(
+            report.contains("singular corner between curves"),
+            name == "degenerate-nurbs",
+            "{report}"
+        );
         ok(&["info", &s(&dir.join(format!("{name}.json")))]);
         ok(&["info", &s(&dir.join(format!("{name}-patch-1.json")))]);
     }

@@ -274,6 +274,12 @@ impl HolesPanel {
                 last.map_or(0.0, |l| l.max_angle),
                 if f.converged() { " (within the tolerances)" } else { "" }
             ));
+            for c in &r.singular_corners {
+                ui.weak(format!(
+                    "singular corner between curves {} and {} ({:.1}° off): G1 is measured away from it",
+                    c.curve_in, c.curve_out, c.degrees
+                ));
+            }
         }
     }
 }

@@ -190,6 +190,14 @@ pub fn print_report(r: &QualityReport, interior: Interior) {
         Significant(r.mean_curvature_squared, 5),
         Significant(r.thin_plate, 5),
     );
+    for c in &r.singular_corners {
+        eprintln!(
+            "singular corner between curves {} and {}: the surrounding normals are {}° off the plane of the tangents (no tangent plane there, as at a cone's apex); G1 is measured away from its boundary edges",
+            c.curve_in,
+            c.curve_out,
+            Significant(c.degrees, 3)
+        );
+    }
 }
 
 /// The boundaries of a hole specification: one hole, or two for a two-curve gap (bisected
@@ -346,8 +354,9 @@ fn write_report(filled: &[FilledHole], path: &Path) -> Result<()> {
 /// Arguments of `pssurf example`.
 #[derive(clap::Args, Debug)]
 pub struct ExampleArgs {
-    /// The example: hole-sphere (thesis 5.4), two-cylinders (5.6.1), prism-cap (5.6.2) or
-    /// two-curve-gap.
+    /// The example: hole-sphere (thesis 5.4), two-cylinders (5.6.1), prism-cap (5.6.2),
+    /// two-curve-gap, or degenerate-nurbs (6.4.1: a triangular patch instead of a NURBS
+    /// patch with a collapsed edge).
     #[arg(value_parser = clap::builder::PossibleValuesParser::new(EXAMPLES))]
     pub name: String,
     #[command(flatten)]
@@ -394,9 +403,9 @@ pub fn run_example(args: &ExampleArgs) -> Result<()> {
             .into_iter()
             .enumerate()
             .map(|(k, s)| SceneEntry {
-                name: format!("surrounding {}", k + 1),
+                name: format!("given {}", k + 1),
                 group: "surroundings".into(),
-                surface: Surface::RationalBezier(s),
+                surface: s,
             })
             .collect();
         objects.extend(filled.iter().enumerate().map(|(k, f)| SceneEntry {

@@ -18,12 +18,19 @@ const PARALLEL: f64 = 1e-3;
 /// |γ̂_in × γ̂_out| below this at a joint: no corner (sin of 0.06°).
 const NO_CORNER: f64 = 1e-3;
 
+/// A corner whose surrounding normals disagree with its tangent plane by more than this
+/// (degrees) is singular: G1 is not asked for on the boundary edges touching it.
+pub const SINGULAR_CORNER_DEGREES: f64 = 1.0;
+
 /// The loop of boundary curves of a hole, in order, each oriented to run into the next.
 pub struct HoleBoundary {
     curves: Vec<DynCurve>,
     /// The number (1-based, as given) of each curve, for messages and reports.
     numbers: Vec<usize>,
     size: f64,
+    /// Per corner k (where curve k starts): the angle between the surrounding normals next
+    /// to it and the normal of the plane of the two tangents there.
+    corner_mismatch: Vec<f64>,
 }
 
 /// The unit vector of v, or `None` when v is zero or not finite.
@@ -63,10 +70,14 @@ impl HoleBoundary {
                 .map(|c| Box::new(Reversed(c)) as DynCurve)
                 .collect();
         }
+        let corner_mismatch = (0..curves.len())
+            .map(|k| corner_mismatch(&curves, k))
+            .collect();
         Ok(HoleBoundary {
             curves,
             numbers,
             size,
+            corner_mismatch,
         })
     }
 
@@ -88,6 +99,21 @@ impl HoleBoundary {
     /// The number (1-based, as given by the caller) of the curve at loop position `k`.
     pub fn number(&self, k: usize) -> usize {
         self.numbers[k]
+    }
+
+    /// At corner k (where curve k starts): the largest angle, in degrees, between the given
+    /// normals next to it and the normal of the plane of the two curves' tangents, which is
+    /// the patch's tangent plane there. Near 0 when the data are consistent; large at a
+    /// singular point of the surrounding surface (the apex of a cone), where no patch can
+    /// meet the normals of both sides.
+    pub fn corner_mismatch(&self, k: usize) -> f64 {
+        self.corner_mismatch[k]
+    }
+
+    /// Whether corner k is singular: its [`Self::corner_mismatch`] exceeds
+    /// [`SINGULAR_CORNER_DEGREES`].
+    pub fn is_singular_corner(&self, k: usize) -> bool {
+        self.corner_mismatch[k] > SINGULAR_CORNER_DEGREES
     }
 
     /// The model size: the diagonal of the bounding box of the curves.
@@ -137,6 +163,22 @@ impl HoleBoundary {
         let g = self.unit_tangent(k, t);
         unit(g.cross(&self.unit_normal(k, t))).unwrap_or(Vector3::repeat(f64::NAN))
     }
+}
+
+/// See [`HoleBoundary::corner_mismatch`]; the normals are taken just inside the curves, where
+/// they exist also when the corner itself is singular.
+fn corner_mismatch(curves: &[DynCurve], k: usize) -> f64 {
+    let n = curves.len();
+    let (cin, cout) = (&curves[(k + n - 1) % n], &curves[k]);
+    let plane = cin.tangent(1.0).cross(&cout.tangent(0.0));
+    [cin.normal(1.0 - 1e-6), cout.normal(1e-6)]
+        .into_iter()
+        .map(|m| {
+            let a = angle_degrees(m, plane);
+            // Normals are lines here: the orientation was checked already.
+            if a.is_finite() { a.min(180.0 - a) } else { 0.0 }
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The diagonal of the bounding box of sample points of all curves.

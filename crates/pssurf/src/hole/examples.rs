@@ -7,11 +7,11 @@ use std::sync::Arc;
 use nalgebra::Vector3;
 
 use super::boundary::unit;
-use super::curves::{BoundaryCurve, CurveFns, NormalField, NurbsBoundary, Reversed};
+use super::curves::{BoundaryCurve, CurveFns, NormalField, NurbsBoundary, Reversed, SurfaceEdge};
 use super::{DynCurve, HoleBoundary, HoleError, two_curve_gap};
-use crate::bezier::RationalBezierTriangle;
-use crate::nurbs::NurbsCurve;
+use crate::nurbs::{NurbsCurve, NurbsSurface};
 use crate::ps::quadrics::Quadric;
+use crate::surface::Surface;
 
 /// A built-in example: the holes to fill and the surfaces around them.
 pub struct HoleExample {
@@ -19,12 +19,19 @@ pub struct HoleExample {
     pub name: &'static str,
     /// One boundary per filling patch.
     pub holes: Vec<HoleBoundary>,
-    /// The surrounding surfaces (for pictures and scenes; may be empty).
-    pub surroundings: Vec<RationalBezierTriangle<Vector3<f64>>>,
+    /// The surrounding surfaces, or the surface the patch replaces (for pictures and
+    /// scenes; may be empty).
+    pub surroundings: Vec<Surface>,
 }
 
 /// The names of the built-in examples.
-pub const EXAMPLES: [&str; 4] = ["hole-sphere", "two-cylinders", "prism-cap", "two-curve-gap"];
+pub const EXAMPLES: [&str; 5] = [
+    "hole-sphere",
+    "two-cylinders",
+    "prism-cap",
+    "two-curve-gap",
+    "degenerate-nurbs",
+];
 
 /// The example called `name`.
 pub fn example(name: &str) -> Option<Result<HoleExample, HoleError>> {
@@ -33,6 +40,7 @@ pub fn example(name: &str) -> Option<Result<HoleExample, HoleError>> {
         "two-cylinders" => cylinder_blend(1.0, PI / 6.0),
         "prism-cap" => prism_cap(1.0, 1.0, 0.5),
         "two-curve-gap" => saddle_gap(),
+        "degenerate-nurbs" => degenerate_nurbs(35.0, 100.0),
         _ => return None,
     })
 }
@@ -88,7 +96,11 @@ pub fn sphere_hole(radius: f64) -> Result<HoleExample, HoleError> {
     Ok(HoleExample {
         name: "hole-sphere",
         holes: holes.into_iter().collect(),
-        surroundings: patches.into_iter().take(2).collect(),
+        surroundings: patches
+            .into_iter()
+            .take(2)
+            .map(Surface::RationalBezier)
+            .collect(),
     })
 }
 
@@ -227,5 +239,52 @@ pub fn saddle_gap() -> Result<HoleExample, HoleError> {
         name: "two-curve-gap",
         holes: holes.into_iter().collect(),
         surroundings: Vec::new(),
+    })
+}
+
+/// A degenerate NURBS patch replaced by a triangular patch (thesis 6.4.1): a quarter of the
+/// cone of base radius r about the y-axis with its apex at (0, h, 0), as a rational NURBS of
+/// degrees 2 × 1 whose v = 1 row of control points is the apex repeated (the usual way to
+/// make a triangle of a rectangle; the normal is undefined there). The hole's curves are the
+/// patch's base arc and its two rulings, with the NURBS' own normals; the algorithm needs no
+/// normal at the corners, so the degenerate corner is no problem. The same cone as the real
+/// IGES file `OCC8842_cone_Ideas.igs` (radius 35, height 100), whose surface is a full turn
+/// (its sides a closed circle, the seam twice and the apex) and so no triangle itself.
+pub fn degenerate_nurbs(r: f64, h: f64) -> Result<HoleExample, HoleError> {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let apex = Vector3::new(0.0, h, 0.0);
+    let points = vec![
+        Vector3::new(r, 0.0, 0.0),
+        apex,
+        Vector3::new(r, 0.0, r),
+        apex,
+        Vector3::new(0.0, 0.0, r),
+        apex,
+    ];
+    let nurbs = NurbsSurface::try_new(
+        [2, 1],
+        [vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
+        [3, 2],
+        points,
+        Some(vec![1.0, 1.0, w, w, 1.0, 1.0]),
+    )
+    .map_err(|e| HoleError::Fair(e.to_string()))?;
+    let surface = Arc::new(Surface::Nurbs(nurbs));
+    let edge = |from: (f64, f64), to: (f64, f64)| -> DynCurve {
+        Box::new(SurfaceEdge {
+            surface: surface.clone(),
+            from: nalgebra::Point2::new(from.0, from.1),
+            to: nalgebra::Point2::new(to.0, to.1),
+        })
+    };
+    let hole = HoleBoundary::new(vec![
+        edge((0.0, 0.0), (1.0, 0.0)),
+        edge((1.0, 0.0), (1.0, 1.0)),
+        edge((0.0, 1.0), (0.0, 0.0)),
+    ])?;
+    Ok(HoleExample {
+        name: "degenerate-nurbs",
+        holes: vec![hole],
+        surroundings: vec![(*surface).clone()],
     })
 }

@@ -42,7 +42,8 @@ pub struct IterationRecord {
     /// model units.
     pub max_deviation: f64,
     /// The largest angle between the patch normal and the given normal at the same points,
-    /// degrees.
+    /// degrees, away from singular corners (where the surrounding surface has no tangent
+    /// plane: [`HoleBoundary::corner_mismatch`]).
     pub max_angle: f64,
     /// Boundary edges whose new vertex came from the fitting equations.
     pub fitted: usize,
@@ -318,7 +319,7 @@ impl HoleFill {
             level: 0,
             vertices: grid.vertex_count(),
             max_deviation: fill.max_deviation(),
-            max_angle: fill.max_angle(),
+            max_angle: fill.max_regular_angle(),
             fitted: fill.deviation.len(),
             subdivided: 0,
             fallbacks,
@@ -360,10 +361,32 @@ impl HoleFill {
         self.deviation.iter().map(|d| d.angle).fold(0.0, f64::max)
     }
 
-    /// Whether boundary edge `k` is within both tolerances.
+    /// Whether boundary edge `k` is within both tolerances. The angle is not asked for on
+    /// the edges at a singular corner (see [`Self::singular_corner_edge`]).
     fn edge_within(&self, k: usize) -> bool {
         let d = self.deviation[k];
-        d.distance <= self.tolerance && d.angle <= self.angle_tolerance
+        d.distance <= self.tolerance
+            && (d.angle <= self.angle_tolerance || self.singular_corner_edge(k))
+    }
+
+    /// Whether boundary edge `k` (current level) touches a singular corner
+    /// ([`HoleBoundary::is_singular_corner`]): there the normals cannot be met on that edge
+    /// at any level.
+    fn singular_corner_edge(&self, k: usize) -> bool {
+        let verts = self.loop_vertices();
+        let n = verts.len();
+        let (side, m, steps) = verts[k];
+        let ns = self.sides.len();
+        let singular = |s: usize| self.boundary.is_singular_corner(self.sides[s].curve);
+        (m == 0 && singular(side)) || (m + 1 == steps && singular((side + 1) % ns)) || n == 0
+    }
+
+    /// The largest normal angle (degrees) away from singular corners.
+    pub fn max_regular_angle(&self) -> f64 {
+        (0..self.deviation.len())
+            .filter(|&k| !self.singular_corner_edge(k))
+            .map(|k| self.deviation[k].angle)
+            .fold(0.0, f64::max)
     }
 
     /// The absolute tolerance.
@@ -398,6 +421,11 @@ impl HoleFill {
                 corner: m == 0,
             })
             .collect()
+    }
+
+    /// The number of boundary edges of side k at the current level.
+    pub fn side_steps(&self, k: usize) -> usize {
+        self.sides[k].steps << self.level
     }
 
     /// The curve (loop position) that side k fits.
@@ -517,7 +545,7 @@ impl HoleFill {
             level: self.level,
             vertices: self.instant.grid().vertex_count(),
             max_deviation: self.max_deviation(),
-            max_angle: self.max_angle(),
+            max_angle: self.max_regular_angle(),
             fitted,
             subdivided,
             fallbacks,

@@ -27,7 +27,7 @@ pub use boundary::{DynCurve, HoleBoundary};
 pub use curves::{BoundaryCurve, CurveFns, NormalField, NurbsBoundary, Reversed, SurfaceEdge};
 pub use fill::{BoundaryVertex, HoleFill, IterationRecord, MAX_ITERATIONS};
 pub use interior::Interior;
-pub use quality::{QualityReport, quality};
+pub use quality::{QualityReport, SingularCorner, quality};
 
 use nalgebra::Vector3;
 use thiserror::Error;

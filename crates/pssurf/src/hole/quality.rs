@@ -25,7 +25,8 @@ pub struct QualityReport {
     /// The root mean square of the same distances.
     pub g0_rms: f64,
     /// The largest angle between the patch normal and the given normal at the closest curve
-    /// point, degrees.
+    /// point, degrees; away from singular corners (the boundary edges touching them are left
+    /// out, a length that halves with every step).
     pub g1_max_degrees: f64,
     /// The root mean square of the same angles, degrees.
     pub g1_rms_degrees: f64,
@@ -33,8 +34,23 @@ pub struct QualityReport {
     pub mean_curvature_squared: f64,
     /// The thin-plate energy ∫∫ |s_uu|² + 2|s_uv|² + |s_vv|² of the patch.
     pub thin_plate: f64,
+    /// The singular corners: the numbers of the two curves meeting there and the angle
+    /// between their surrounding normals and the corner's tangent plane, degrees.
+    pub singular_corners: Vec<SingularCorner>,
     /// The residual of every iteration.
     pub iterations: Vec<IterationRecord>,
+}
+
+/// A corner where the surrounding surface has no tangent plane the patch could share.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize))]
+pub struct SingularCorner {
+    /// The curve arriving (numbered as given).
+    pub curve_in: usize,
+    /// The curve leaving.
+    pub curve_out: usize,
+    /// The mismatch in degrees.
+    pub degrees: f64,
 }
 
 /// Measures `patch` (the current patch of `fill`, with any interior method).
@@ -47,8 +63,15 @@ pub fn quality(fill: &HoleFill, patch: &Ups<Vector3<f64>>) -> Result<QualityRepo
     for k in 0..n {
         let (a, c) = (corners[k], corners[(k + 1) % n]);
         let curve = fill.side_curve(k);
+        let next = fill.side_curve((k + 1) % n);
+        let singular = |c: usize| b.is_singular_corner(c);
+        // The first and last boundary edges of the side, if they touch a singular corner.
+        let edge = 1.0 / fill.side_steps(k) as f64;
+        let lo = if singular(curve) { edge } else { 0.0 };
+        let hi = if singular(next) { 1.0 - edge } else { 1.0 };
         for i in 0..SAMPLES_PER_CURVE {
             let t = (i as f64 + 0.5) / SAMPLES_PER_CURVE as f64;
+            let measure_g1 = t >= lo && t <= hi;
             let uv = Point2::from(a.coords * (1.0 - t) + c.coords * t);
             let jet = ps.jet(uv).map_err(|e| HoleError::Fair(e.to_string()))?.jet;
             let (t, distance) = b.closest(curve, jet.value, t);
@@ -56,6 +79,7 @@ pub fn quality(fill: &HoleFill, patch: &Ups<Vector3<f64>>) -> Result<QualityRepo
             let given = b.unit_normal(curve, t);
             if let Some(normal) = unit(jet.dx.cross(&jet.dy))
                 && given.iter().all(|x| x.is_finite())
+                && measure_g1
             {
                 g1.push(super::boundary::angle_degrees(normal, given));
             }
@@ -72,6 +96,14 @@ pub fn quality(fill: &HoleFill, patch: &Ups<Vector3<f64>>) -> Result<QualityRepo
         g1_rms_degrees: rms(&g1),
         mean_curvature_squared: f.integrals.mean_squared,
         thin_plate: f.integrals.thin_plate,
+        singular_corners: (0..n)
+            .filter(|&c| b.is_singular_corner(c))
+            .map(|c| SingularCorner {
+                curve_in: b.number((c + n - 1) % n),
+                curve_out: b.number(c),
+                degrees: b.corner_mismatch(c),
+            })
+            .collect(),
         iterations: fill.history().to_vec(),
     })
 }

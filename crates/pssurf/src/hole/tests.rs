@@ -481,3 +481,47 @@ fn bridging_reproduces_quadratics() {
         assert!(worst < 1e-12, "{sides} sides: {worst}");
     }
 }
+
+#[test]
+fn the_degenerate_nurbs_patch_is_replaced_with_its_apex_a_singular_corner() {
+    let ex = example("degenerate-nurbs").unwrap().unwrap();
+    let hole = ex.holes.into_iter().next().unwrap();
+    let n = hole.len();
+    // Only the apex is singular: the cone has no tangent plane there. Along the ruling at
+    // angle θ the cone's normal is (h cos θ, r, h sin θ); the rulings at 0 and 90° span the
+    // plane with normal (h, r, h): the mismatch is acos(√(h² + r²) / √(2h² + r²)).
+    let singular: Vec<usize> = (0..n).filter(|&k| hole.is_singular_corner(k)).collect();
+    assert_eq!(singular.len(), 1);
+    let apex = hole.curves()[singular[0]].point(0.0);
+    assert!(
+        (apex - Vector3::new(0.0, 100.0, 0.0)).norm() < 1e-9,
+        "{apex}"
+    );
+    let (h, r) = (100.0f64, 35.0f64);
+    let exact = ((h * h + r * r).sqrt() / (2.0 * h * h + r * r).sqrt())
+        .acos()
+        .to_degrees();
+    let got = hole.corner_mismatch(singular[0]);
+    // The normals are taken 1e-6 from the apex, where the NURBS normal is the cross product
+    // of a derivative 1e-6 long: 10 digits (measured 2.7e-9°).
+    assert!((got - exact).abs() < 1e-7, "{got} against {exact}");
+    let filled = fill_hole(hole, &FillOptions::default()).unwrap();
+    assert!(filled.converged);
+    assert_eq!(filled.report.singular_corners.len(), 1);
+    // The patch follows the cone: every boundary sample within G0, and a point in the middle
+    // of the patch within 1% of the size of the cone x² + z² = (35 (1 − y/100))².
+    let q = &filled.report;
+    assert!(
+        q.g0_max <= 1e-4 * q.model_size && q.g1_max_degrees <= 0.5,
+        "{q:?}"
+    );
+    let ps = filled.patch.to_ps().unwrap();
+    let tri = ps.basis().triangulation();
+    let worst = (0..tri.vertex_count())
+        .map(|i| {
+            let p = ps.point(tri.vertex(i)).unwrap();
+            ((p.x * p.x + p.z * p.z).sqrt() - 35.0 * (1.0 - p.y / 100.0)).abs()
+        })
+        .fold(0.0, f64::max);
+    assert!(worst < 0.01 * q.model_size, "{worst}");
+}
