@@ -120,6 +120,9 @@ enum Command {
     /// Fill a hole bounded by 3 to 6 curves (or a gap between 2) with a UPS patch that meets
     /// the curves and the normals of the surrounding surfaces (thesis chapter 5).
     FillHole(commands::hole::FillHoleArgs),
+    /// Triangle meshes (OBJ, PLY, STL): subdivide them by Loop, √3 or the butterfly scheme.
+    #[command(subcommand)]
+    Mesh(commands::mesh::MeshWhat),
     /// Run a built-in hole-filling example of the thesis (hole-sphere, two-cylinders,
     /// prism-cap, two-curve-gap) and write its scene, patches and quality report.
     Example(commands::hole::ExampleArgs),
@@ -179,6 +182,7 @@ fn main() -> ExitCode {
         Command::Edit(a) => commands::edit::run(a),
         Command::Fair(a) => commands::fair::run(a),
         Command::FillHole(a) => commands::hole::run_fill(a),
+        Command::Mesh(w) => commands::mesh::run(w),
         Command::Example(a) => commands::hole::run_example(a),
         Command::Curve(a) => commands::curve::run(a),
         Command::Plot(a) => commands::plot::run(a),

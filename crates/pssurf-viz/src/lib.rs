@@ -16,6 +16,7 @@ pub mod camera;
 pub mod colormap;
 pub mod domain;
 pub mod export;
+pub mod import;
 pub mod legend;
 pub mod plot;
 pub mod raster;

@@ -14,6 +14,7 @@ pub mod fit;
 pub mod hole;
 pub mod import;
 pub mod info;
+pub mod mesh;
 pub mod new;
 pub mod noise;
 pub mod plot;
