@@ -120,6 +120,9 @@ enum Command {
     /// Fill a hole bounded by 3 to 6 curves (or a gap between 2) with a UPS patch that meets
     /// the curves and the normals of the surrounding surfaces (thesis chapter 5).
     FillHole(commands::hole::FillHoleArgs),
+    /// Compare Loop, √3, the butterfly and a PS-spline interpolant on one coarse mesh: their
+    /// curvature plots side by side on an HTML page.
+    CompareSubdivision(commands::compare::CompareArgs),
     /// Triangle meshes (OBJ, PLY, STL): subdivide them by Loop, √3 or the butterfly scheme.
     #[command(subcommand)]
     Mesh(commands::mesh::MeshWhat),
@@ -183,6 +186,7 @@ fn main() -> ExitCode {
         Command::Fair(a) => commands::fair::run(a),
         Command::FillHole(a) => commands::hole::run_fill(a),
         Command::Mesh(w) => commands::mesh::run(w),
+        Command::CompareSubdivision(a) => commands::compare::run(a),
         Command::Example(a) => commands::hole::run_example(a),
         Command::Curve(a) => commands::curve::run(a),
         Command::Plot(a) => commands::plot::run(a),

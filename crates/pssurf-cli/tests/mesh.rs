@@ -152,3 +152,37 @@ fn bad_meshes_get_one_clear_line() {
     assert!(e.contains(".obj"), "{e}");
     assert!(!std::path::Path::new(&out).exists());
 }
+
+#[test]
+fn compare_subdivision_writes_a_page_with_four_pictures() {
+    let d = tmp();
+    let dir = d.path().join("cmp");
+    let report = ok_report(&[
+        "compare-subdivision",
+        &example("bump.obj"),
+        "--times",
+        "2",
+        "--size",
+        "320x240",
+        "-o",
+        &s(&dir),
+    ]);
+    assert!(report.contains("4 panels"), "{report}");
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    for name in ["loop.png", "sqrt3.png", "butterfly.png", "ps.png"] {
+        assert!(html.contains(name), "{html}");
+        let png = std::fs::read(dir.join(name)).unwrap();
+        assert_eq!(&png[1..4], b"PNG");
+    }
+    // A closed mesh is no height field: three panels, and the page says why.
+    let obj = write(d.path(), "oct.obj", OCTAHEDRON);
+    let report = ok_report(&[
+        "compare-subdivision",
+        &s(&obj),
+        "-o",
+        &s(&d.path().join("o")),
+    ]);
+    assert!(report.contains("3 panels"), "{report}");
+    let html = std::fs::read_to_string(d.path().join("o/index.html")).unwrap();
+    assert!(html.contains("not a height field"));
+}

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod approx;
+pub mod compare;
 pub mod curvature;
 pub mod curve;
 pub mod denoise;

@@ -1,0 +1,271 @@
+//! `pssurf compare-subdivision MESH -o DIR`: one coarse mesh refined by Loop, √3 and the
+//! butterfly scheme and, where it is a height field over a planar triangulation, interpolated
+//! by a PS-spline; their curvature plots side by side on one HTML page (issue 20, part 4).
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::{Context, Result, anyhow};
+use nalgebra::{Point2, Vector3};
+use pssurf::interrogate::{CurvatureQuantity, PrincipalCurvatures, SampledSurface};
+use pssurf::io::Durability;
+use pssurf::mesh::TriMesh;
+use pssurf::scattered::{GradientMethod, data_basis, estimate_gradients_by, hermite_spline};
+use pssurf::subdivision::mesh::discrete_curvature;
+use pssurf::subdivision::{Mesh, SurfaceScheme};
+use pssurf::surface::Surface;
+use pssurf::triangulation::Triangulation;
+use pssurf_viz::{PlotOptions, Range, Show};
+
+/// Arguments of `pssurf compare-subdivision`.
+#[derive(clap::Args, Debug)]
+pub struct CompareArgs {
+    /// The coarse control mesh (.obj, .ply or .stl).
+    #[arg(value_name = "MESH")]
+    pub input: PathBuf,
+    /// Subdivision steps of each scheme (√3 gets twice as many, the same refinement).
+    #[arg(long, default_value_t = 3)]
+    pub times: u32,
+    /// The quantity to compare.
+    #[arg(long, value_enum, default_value_t = QuantityArg::Gaussian)]
+    pub show: QuantityArg,
+    /// Picture size in pixels.
+    #[arg(long, value_name = "WxH", default_value = "640x480")]
+    pub size: crate::commands::plot::Size,
+    /// The folder to write into (created if missing).
+    #[arg(short, long, value_name = "DIR")]
+    pub output: PathBuf,
+}
+
+/// The quantities.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum QuantityArg {
+    /// Gaussian curvature K.
+    Gaussian,
+    /// Mean curvature H.
+    Mean,
+}
+
+/// One panel of the page.
+struct Panel {
+    file: String,
+    title: String,
+    note: &'static str,
+    sampled: SampledSurface,
+}
+
+/// A subdivided mesh as a sampled surface with its discrete curvatures.
+fn sampled_mesh(mesh: Mesh) -> Result<SampledSurface> {
+    let (k, h) = discrete_curvature(&mesh)?;
+    let mut normals = vec![Vector3::zeros(); mesh.positions.len()];
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+        let f = (b - a).cross(&(c - a));
+        for &v in t {
+            normals[v as usize] += f;
+        }
+    }
+    let curvature = k
+        .iter()
+        .zip(&h)
+        .map(|(&k, &h)| {
+            let d = (h * h - k).max(0.0).sqrt();
+            PrincipalCurvatures {
+                gaussian: k,
+                mean: h,
+                k1: h + d,
+                k2: h - d,
+            }
+        })
+        .collect();
+    Ok(SampledSurface {
+        patch: vec![0; mesh.positions.len()],
+        curvature,
+        mesh: TriMesh {
+            uvs: vec![Point2::origin(); mesh.positions.len()],
+            normals: normals
+                .into_iter()
+                .map(|n| n.try_normalize(0.0).unwrap_or_default())
+                .collect(),
+            positions: mesh.positions,
+            triangles: mesh.triangles,
+        },
+    })
+}
+
+/// The PS-spline interpolating the mesh as a height field z(x, y) over its own triangulation
+/// (gradients estimated locally), if the mesh is one.
+fn ps_interpolant(mesh: &Mesh) -> Option<Surface> {
+    let points: Vec<Point2<f64>> = mesh
+        .positions
+        .iter()
+        .map(|p| Point2::new(p.x, p.y))
+        .collect();
+    let triangles: Vec<[usize; 3]> = mesh
+        .triangles
+        .iter()
+        .map(|t| t.map(|v| v as usize))
+        .collect();
+    let tri = Triangulation::try_new(points, triangles).ok()?;
+    let basis = Arc::new(data_basis(tri, pssurf::ps::SplitRule::Incenter).ok()?);
+    let z: Vec<f64> = mesh.positions.iter().map(|p| p.z).collect();
+    let (gradients, _) = estimate_gradients_by(&basis, &z, GradientMethod::Local).ok()?;
+    hermite_spline(basis, &z, &gradients)
+        .ok()
+        .map(Surface::Functional)
+}
+
+/// Runs `pssurf compare-subdivision`.
+pub fn run(args: &CompareArgs) -> Result<()> {
+    let coarse = pssurf_viz::import::read_mesh(&args.input).map_err(|e| anyhow!(e))?;
+    coarse
+        .topology()
+        .map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
+    let t = coarse.triangles.len() as u64;
+    let fin = 4u64
+        .checked_pow(args.times)
+        .and_then(|f| f.checked_mul(t))
+        .unwrap_or(u64::MAX);
+    crate::budget::Estimate {
+        what: format!("comparing {} steps", args.times),
+        makes: format!(
+            "three meshes of about {} triangles",
+            crate::budget::count(fin)
+        ),
+        memory: fin.saturating_mul(3 * 250),
+        output: fin.saturating_mul(3 * 60),
+    }
+    .check()?;
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("cannot create the folder {}", args.output.display()))?;
+    let schemes = [
+        (
+            SurfaceScheme::Loop,
+            args.times,
+            "approximating; C² where the mesh is regular (the quartic box spline), C¹ at extraordinary vertices",
+        ),
+        (
+            SurfaceScheme::Sqrt3,
+            2 * args.times,
+            "approximating; C² where regular, C¹ at extraordinary vertices; twice the steps (3² = 9 triangles per two steps ≈ 4 per Loop step)",
+        ),
+        (
+            SurfaceScheme::Butterfly,
+            args.times,
+            "interpolating the control points; C¹ (the modified rule at extraordinary vertices), never C²",
+        ),
+    ];
+    let mut panels = Vec::new();
+    for (scheme, times, note) in schemes {
+        let mut m = coarse.clone();
+        for _ in 0..times {
+            m = scheme.step(&m)?;
+        }
+        panels.push(Panel {
+            file: format!("{}.png", scheme.name()),
+            title: format!("{} × {times}", scheme.name()),
+            note,
+            sampled: sampled_mesh(m)?,
+        });
+    }
+    let quantity = match args.show {
+        QuantityArg::Gaussian => CurvatureQuantity::Gaussian,
+        QuantityArg::Mean => CurvatureQuantity::Mean,
+    };
+    let ps = ps_interpolant(&coarse);
+    if let Some(s) = &ps {
+        let sampled = pssurf::interrogate::sample_patches(s, 3, true);
+        panels.push(Panel {
+            file: "ps.png".into(),
+            title: "PS-spline interpolant".into(),
+            note: "interpolating the control points as a height field z(x, y) over the mesh's own triangulation (gradients estimated); C¹, with curvature jumps across the edges of the PS refinement",
+            sampled,
+        });
+    }
+    // One colour range for all: the 98th percentile of |q| over everything.
+    let mut all: Vec<f64> = panels
+        .iter()
+        .flat_map(|p| p.sampled.quantity(quantity))
+        .filter(|v| v.is_finite())
+        .map(f64::abs)
+        .collect();
+    all.sort_by(f64::total_cmp);
+    let r = all
+        .get(((all.len() as f64 * 0.98) as usize).min(all.len().saturating_sub(1)))
+        .copied()
+        .unwrap_or(1.0)
+        .max(1e-12);
+    let opts = PlotOptions {
+        show: Show::Quantity(quantity),
+        range: Range::Fixed(-r, r),
+        width: args.size.0,
+        height: args.size.1,
+        ..PlotOptions::default()
+    };
+    for p in &panels {
+        let picture = pssurf_viz::plot::plot_sampled(&p.sampled, &[], &opts);
+        let path = args.output.join(&p.file);
+        crate::output::write_output(&path, Durability::Atomic, |w| {
+            picture.write_png(w).map_err(|e| anyhow!(e))
+        })?;
+    }
+    let html = page(args, &panels, quantity, r, ps.is_some());
+    crate::output::write_output(&args.output.join("index.html"), Durability::Atomic, |w| {
+        Ok(w.write_all(html.as_bytes())?)
+    })?;
+    eprintln!(
+        "{} panels ({}), colour range ±{}; wrote {}",
+        panels.len(),
+        panels
+            .iter()
+            .map(|p| p.title.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        pssurf::text::Short(r),
+        args.output.join("index.html").display()
+    );
+    Ok(())
+}
+
+/// The HTML page.
+fn page(
+    args: &CompareArgs,
+    panels: &[Panel],
+    q: CurvatureQuantity,
+    r: f64,
+    height_field: bool,
+) -> String {
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Subdivision schemes compared</title>\n\
+<style>body{{font-family:sans-serif;max-width:1400px;margin:auto}} .grid{{display:flex;flex-wrap:wrap;gap:16px}} figure{{margin:0;width:{}px}} img{{width:100%}}</style></head><body>\n\
+<h1>Subdivision schemes compared</h1>\n<p>The control mesh <code>{}</code> ({} vertices, {} triangles) refined by each scheme; {} plotted with one colour range, ±{:.4}. Curvatures of subdivided meshes are discrete estimates (angle deficit, cotangent Laplacian).</p>\n<div class=\"grid\">\n",
+        args.size.0,
+        html_escape(&args.input.display().to_string()),
+        panels.first().map_or(0, |p| p.sampled.mesh.positions.len()),
+        panels.first().map_or(0, |p| p.sampled.mesh.triangles.len()),
+        q.long_name(),
+        r
+    );
+    for p in panels {
+        let _ = writeln!(
+            s,
+            "<figure><img src=\"{}\" alt=\"{}\"><figcaption><b>{}</b>: {}</figcaption></figure>",
+            p.file, p.title, p.title, p.note
+        );
+    }
+    s.push_str("</div>\n");
+    if !height_field {
+        s.push_str("<p>The mesh is not a height field over a planar triangulation, so there is no PS-spline panel.</p>\n");
+    }
+    s.push_str("</body></html>\n");
+    s
+}
+
+fn html_escape(t: &str) -> String {
+    t.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
