@@ -124,3 +124,27 @@ fn the_comb_of_an_arc_is_constant() {
     let msg = fails(&["curve", &poly, "--comb", "-o", "x.svg"]);
     assert_eq!(msg.trim().lines().count(), 1, "{msg}");
 }
+
+#[test]
+fn info_reports_the_torsion_of_the_twisted_cubic() {
+    let d = tmp();
+    let file = write(
+        d.path(),
+        "twisted.json",
+        r#"{"format":"pssurf","version":1,"kind":"curve","curve":{"degree":3,
+        "points":[[0,0,0],[0.3333333333333333,0,0],[0.6666666666666666,0.3333333333333333,0],[1,1,1]]}}"#,
+    );
+    let out = ok(&["info", &s(&file)]);
+    // τ = 3/(9t⁴ + 9t² + 1): 3 at t = 0, 3/19 at t = 1; κ(0) = 2.
+    let line = out.lines().find(|l| l.starts_with("torsion")).unwrap();
+    let v: Vec<f64> = line
+        .split_whitespace()
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    assert!(
+        (v[0] - 3.0 / 19.0).abs() < 1e-12 && (v[1] - 3.0).abs() < 1e-12,
+        "{line}"
+    );
+    let line = out.lines().find(|l| l.starts_with("curvature")).unwrap();
+    assert!(line.contains(" to 2 "), "{line}");
+}

@@ -149,6 +149,8 @@ struct CurveInfo {
     length: f64,
     /// The inflection points' parameters, for a planar curve (None for a space curve).
     inflections: Option<Vec<f64>>,
+    /// The ranges of curvature and torsion at 32 samples per knot span.
+    curvature_torsion: pssurf::interrogate::curve_shape::CurvatureTorsion,
 }
 
 /// Whether the file's first 4 KiB name it a pssurf curve file.
@@ -189,6 +191,7 @@ fn curve_info(args: &InfoArgs) -> Result<()> {
         control_max: hi.into(),
         length,
         inflections,
+        curvature_torsion: pssurf::interrogate::curve_shape::curvature_torsion_ranges(&c, 32),
     };
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&info)?)?;
@@ -228,6 +231,16 @@ fn curve_info(args: &InfoArgs) -> Result<()> {
                 .join(", ")
         )?,
         None => outln!("inflections          - (a space curve)")?,
+    }
+    let ct = info.curvature_torsion;
+    outln!(
+        "curvature            {} to {} (32 samples per span)",
+        ct.curvature[0],
+        ct.curvature[1]
+    )?;
+    match ct.torsion {
+        Some([a, b]) => outln!("torsion              {a} to {b}")?,
+        None => outln!("torsion              - (no osculating plane: a straight line)")?,
     }
     Ok(())
 }

@@ -61,7 +61,7 @@ pub fn arc_length(c: &NurbsCurve, tolerance: f64) -> ArcLength {
 }
 
 /// `per_span` equally spaced parameters on every non-empty knot span of `c`, and its end.
-pub(crate) fn span_samples(c: &NurbsCurve, per_span: usize) -> Vec<f64> {
+pub fn span_samples(c: &NurbsCurve, per_span: usize) -> Vec<f64> {
     let (lo, hi) = c.domain();
     let mut params = Vec::new();
     for w in c.knot_vector().knots().windows(2) {
@@ -198,4 +198,35 @@ mod tests {
         let flat = quartic_graph(|x| x.powi(4));
         assert!(inflections(&flat, Vector3::z(), 9).is_empty());
     }
+}
+
+/// The ranges of curvature κ and torsion τ at the parameters of [`span_samples`] with
+/// `per_span` samples per knot span (seed 004: κ = |c′ × c″|/|c′|³,
+/// τ = (c′ × c″) · c‴ / |c′ × c″|²); `None` for τ when it is nowhere defined (a straight
+/// line).
+pub fn curvature_torsion_ranges(c: &NurbsCurve, per_span: usize) -> CurvatureTorsion {
+    let mut out = CurvatureTorsion {
+        curvature: [f64::INFINITY, f64::NEG_INFINITY],
+        torsion: None,
+    };
+    for t in span_samples(c, per_span) {
+        if let Some(k) = c.curvature(t) {
+            out.curvature = [out.curvature[0].min(k), out.curvature[1].max(k)];
+        }
+        if let Some(tau) = c.torsion(t) {
+            let r = out.torsion.get_or_insert([tau, tau]);
+            *r = [r[0].min(tau), r[1].max(tau)];
+        }
+    }
+    out
+}
+
+/// The ranges found by [`curvature_torsion_ranges`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "io", derive(serde::Serialize))]
+pub struct CurvatureTorsion {
+    /// [min, max] of κ.
+    pub curvature: [f64; 2],
+    /// [min, max] of τ where the curve has an osculating plane.
+    pub torsion: Option<[f64; 2]>,
 }

@@ -201,6 +201,37 @@ impl KnotVector {
         [n, d1, d2]
     }
 
+    /// The third derivatives N‴ of the p + 1 nonzero functions on span `i` at `t` (zero for
+    /// p < 3): the triangular scheme down to degree p − 3, then eq. 2.7 three times. A cold
+    /// path (torsion of curves); the hot loops use [`KnotVector::basis`].
+    pub fn third_derivatives(&self, i: usize, t: f64) -> [f64; MAX_DEGREE + 1] {
+        const N: usize = MAX_DEGREE + 1;
+        let p = self.degree;
+        if p < 3 {
+            return [0.0; N];
+        }
+        let knots = &self.knots;
+        let mut n = [0.0; N];
+        let mut left = [0.0; N];
+        let mut right = [0.0; N];
+        n[0] = 1.0;
+        // The values of degree p − 3.
+        for j in 1..=p - 3 {
+            left[j] = t - knots[i + 1 - j];
+            right[j] = knots[i + j] - t;
+            let mut saved = 0.0;
+            for r in 0..j {
+                let temp = n[r] * self.inv(j, i + r + 1);
+                n[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            n[j] = saved;
+        }
+        let d1 = self.derive::<N>(p - 2, i, &n);
+        let d2 = self.derive::<N>(p - 1, i, &d1);
+        self.derive::<N>(p, i, &d2)
+    }
+
     /// 1/(U_m − U_{m−j}), or 0.
     #[inline]
     fn inv(&self, j: usize, m: usize) -> f64 {

@@ -89,6 +89,43 @@ impl NurbsCurve {
         Some([c, c1, c2])
     }
 
+    /// c(t), c′(t), c″(t), c‴(t); `None` outside the domain. From the homogeneous curve
+    /// A = Σ N w P, w = Σ N w: c‴ = (A‴ − 3 w′ c″ − 3 w″ c′ − w‴ c)/w.
+    pub fn derivatives3(&self, t: f64) -> Option<[Vector3<f64>; 4]> {
+        let [c, c1, c2] = self.derivatives(t)?;
+        let p = self.knots.degree();
+        let i = self.knots.spans()[self.knots.span_rank(t)];
+        let b = self.knots.basis(i, t);
+        let d3 = self.knots.third_derivatives(i, t);
+        let (mut a3, mut w) = (Vector3::zeros(), [0.0; 4]);
+        for r in 0..=p {
+            let (pt, wt) = (self.points[i - p + r], self.weights[i - p + r]);
+            a3 += pt * (d3[r] * wt);
+            for k in 0..3 {
+                w[k] += b.d[k][r] * wt;
+            }
+            w[3] += d3[r] * wt;
+        }
+        let c3 = (a3 - c2 * (3.0 * w[1]) - c1 * (3.0 * w[2]) - c * w[3]) / w[0];
+        Some([c, c1, c2, c3])
+    }
+
+    /// The torsion τ = (c′ × c″) · c‴ / |c′ × c″|² at t; `None` outside the domain or where
+    /// the curvature vanishes (no osculating plane).
+    pub fn torsion(&self, t: f64) -> Option<f64> {
+        let [_, c1, c2, c3] = self.derivatives3(t)?;
+        let b = c1.cross(&c2);
+        let n2 = b.norm_squared();
+        (n2 > 1e-300 * c1.norm_squared().powi(3).max(f64::MIN_POSITIVE)).then(|| b.dot(&c3) / n2)
+    }
+
+    /// The curvature κ = |c′ × c″| / |c′|³ at t; `None` outside the domain or where c′ = 0.
+    pub fn curvature(&self, t: f64) -> Option<f64> {
+        let [_, c1, c2] = self.derivatives(t)?;
+        let s = c1.norm();
+        (s > 0.0).then(|| c1.cross(&c2).norm() / (s * s * s))
+    }
+
     /// c(t); `None` outside the domain.
     pub fn point(&self, t: f64) -> Option<Vector3<f64>> {
         self.derivatives(t).map(|d| d[0])

@@ -516,3 +516,104 @@ fn the_ups_approximation_converges_with_third_order_and_meets_a_tolerance() {
     );
     assert!(matches!(e, Err(ApproxError::Tolerance(_))));
 }
+
+/// The twisted cubic (t, t², t³) on [0, 1] as a cubic Bézier curve, rational with weights c^i
+/// (a Möbius reparametrisation t = c s / ((1 − s) + c s) of the same curve) when c ≠ 1.
+fn twisted_cubic(c: f64) -> NurbsCurve {
+    let p = vec![
+        Vector3::new(0.0, 0.0, 0.0),
+        Vector3::new(1.0 / 3.0, 0.0, 0.0),
+        Vector3::new(2.0 / 3.0, 1.0 / 3.0, 0.0),
+        Vector3::new(1.0, 1.0, 1.0),
+    ];
+    let w = (c != 1.0).then(|| vec![1.0, c, c * c, c * c * c]);
+    NurbsCurve::try_new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0], p, w).unwrap()
+}
+
+#[test]
+fn torsion_and_curvature_of_the_twisted_cubic_are_its_closed_forms() {
+    // τ = 3 / (9t⁴ + 9t² + 1), κ = 2 √(9t⁴ + 9t² + 1) / (1 + 4t² + 9t⁴)^{3/2}.
+    let tau = |t: f64| 3.0 / (9.0 * t.powi(4) + 9.0 * t * t + 1.0);
+    let kappa = |t: f64| {
+        2.0 * (9.0 * t.powi(4) + 9.0 * t * t + 1.0).sqrt()
+            / (1.0 + 4.0 * t * t + 9.0 * t.powi(4)).powf(1.5)
+    };
+    for c in [1.0, 0.5, 2.0, 3.7] {
+        let curve = twisted_cubic(c);
+        for k in 0..=20 {
+            let s = k as f64 / 20.0;
+            let t = c * s / ((1.0 - s) + c * s);
+            let (got_tau, got_kappa) = (curve.torsion(s).unwrap(), curve.curvature(s).unwrap());
+            assert!(
+                (got_tau - tau(t)).abs() < 1e-12 * tau(t),
+                "c {c} s {s}: {got_tau} vs {}",
+                tau(t)
+            );
+            assert!(
+                (got_kappa - kappa(t)).abs() < 1e-12 * kappa(t),
+                "c {c} s {s}"
+            );
+        }
+    }
+}
+
+#[test]
+fn torsion_across_an_interior_knot_and_of_planar_curves() {
+    // The twisted cubic on [0, 2] as a B-spline with the interior knot 1 of multiplicity 3:
+    // Bézier points of (2s, 4s², 8s³) halved by de Casteljau.
+    let b = [
+        Vector3::new(0.0, 0.0, 0.0),
+        Vector3::new(2.0 / 3.0, 0.0, 0.0),
+        Vector3::new(4.0 / 3.0, 4.0 / 3.0, 0.0),
+        Vector3::new(2.0, 4.0, 8.0),
+    ];
+    let m = |a: Vector3<f64>, b: Vector3<f64>| (a + b) * 0.5;
+    let (l1, m1, r1) = (m(b[0], b[1]), m(b[1], b[2]), m(b[2], b[3]));
+    let (l2, r2) = (m(l1, m1), m(m1, r1));
+    let mid = m(l2, r2);
+    // Knots [0,0,0,0,1,1,1,2,2,2,2]: the two Bézier pieces joined (C² by construction).
+    let points = vec![b[0], l1, l2, mid, r2, r1, b[3]];
+    let curve = NurbsCurve::try_new(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0],
+        points,
+        None,
+    )
+    .unwrap();
+    for k in 0..=40 {
+        let t = 2.0 * k as f64 / 40.0;
+        let exact = 3.0 / (9.0 * t.powi(4) + 9.0 * t * t + 1.0);
+        let got = curve.torsion(t).unwrap();
+        assert!(
+            (got - exact).abs() < 1e-11 * exact,
+            "t {t}: {got} vs {exact}"
+        );
+    }
+    // A planar rational conic has no torsion; a straight line no osculating plane.
+    let conic = NurbsCurve::try_new(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector3::new(1.0, 0.0, 2.0),
+            Vector3::new(1.0, 1.0, 2.0),
+            Vector3::new(0.0, 1.0, 2.0),
+        ],
+        Some(vec![1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0]),
+    )
+    .unwrap();
+    for k in 0..=10 {
+        let t = k as f64 / 10.0;
+        assert!(conic.torsion(t).unwrap().abs() < 1e-12);
+        assert!((conic.curvature(t).unwrap() - 1.0).abs() < 1e-12);
+    }
+    let line = NurbsCurve::try_new(
+        1,
+        vec![0.0, 0.0, 1.0, 1.0],
+        vec![Vector3::zeros(), Vector3::new(1.0, 2.0, 3.0)],
+        None,
+    )
+    .unwrap();
+    assert_eq!(line.torsion(0.5), None);
+    assert_eq!(line.curvature(0.5), Some(0.0));
+    assert_eq!(line.torsion(1.5), None);
+}
