@@ -210,22 +210,13 @@ impl KnotVector {
         if p < 3 {
             return [0.0; N];
         }
-        let knots = &self.knots;
         let mut n = [0.0; N];
         let mut left = [0.0; N];
         let mut right = [0.0; N];
         n[0] = 1.0;
         // The values of degree p − 3.
         for j in 1..=p - 3 {
-            left[j] = t - knots[i + 1 - j];
-            right[j] = knots[i + j] - t;
-            let mut saved = 0.0;
-            for r in 0..j {
-                let temp = n[r] * self.inv(j, i + r + 1);
-                n[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            n[j] = saved;
+            self.raise(j, i, t, &mut n, &mut left, &mut right);
         }
         let d1 = self.derive::<N>(p - 2, i, &n);
         let d2 = self.derive::<N>(p - 1, i, &d1);
@@ -242,7 +233,6 @@ impl KnotVector {
     /// degree p, p − 1 and p − 2 (zero where a degree does not exist).
     #[inline(always)]
     fn levels<const N: usize>(&self, p: usize, i: usize, t: f64) -> [[f64; N]; 3] {
-        let knots = &self.knots;
         let mut n = [0.0; N];
         let mut left = [0.0; N];
         let mut right = [0.0; N];
@@ -257,20 +247,36 @@ impl KnotVector {
         };
         keep(0, &n, &mut out);
         for j in 1..=p {
-            left[j] = t - knots[i + 1 - j];
-            right[j] = knots[i + j] - t;
-            let mut saved = 0.0;
-            for r in 0..j {
-                // right[r + 1] + left[j − r] = U_{i+r+1} − U_{i+r+1−j}.
-                let temp = n[r] * self.inv(j, i + r + 1);
-                n[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            n[j] = saved;
+            self.raise(j, i, t, &mut n, &mut left, &mut right);
             keep(j, &n, &mut out);
         }
         out[0] = n;
         out
+    }
+
+    /// One step of the triangular scheme: the degree-(j − 1) functions on span `i` in `n`
+    /// become the degree-j ones.
+    #[inline(always)]
+    fn raise<const N: usize>(
+        &self,
+        j: usize,
+        i: usize,
+        t: f64,
+        n: &mut [f64; N],
+        left: &mut [f64; N],
+        right: &mut [f64; N],
+    ) {
+        let knots = &self.knots;
+        left[j] = t - knots[i + 1 - j];
+        right[j] = knots[i + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            // right[r + 1] + left[j − r] = U_{i+r+1} − U_{i+r+1−j}.
+            let temp = n[r] * self.inv(j, i + r + 1);
+            n[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        n[j] = saved;
     }
 
     /// The derivatives of the degree-`d` functions on span `i` from the degree-(d − 1) ones

@@ -80,6 +80,57 @@ pub struct Topology {
 }
 
 impl Mesh {
+    /// The regular octahedron with vertices ±e_x, ±e_y, ±e_z (closed, every vertex of
+    /// valence 4): a small closed test mesh.
+    pub fn octahedron() -> Mesh {
+        let p = [
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ];
+        Mesh {
+            positions: p.iter().map(|&c| Vector3::from(c)).collect(),
+            triangles: vec![
+                [0, 2, 4],
+                [2, 1, 4],
+                [1, 3, 4],
+                [3, 0, 4],
+                [2, 0, 5],
+                [1, 2, 5],
+                [3, 1, 5],
+                [0, 3, 5],
+            ],
+        }
+    }
+
+    /// The regular lattice over the rhombus of n × n cells of unit edges, lifted by `f`:
+    /// points (i + j/2, j √3/2, f(x, y)), 2n² triangles, interior valence 6.
+    pub fn lattice(n: u32, f: impl Fn(f64, f64) -> f64) -> Mesh {
+        let s = 0.75f64.sqrt();
+        let mut positions = Vec::with_capacity(((n + 1) * (n + 1)) as usize);
+        for j in 0..=n {
+            for i in 0..=n {
+                let (x, y) = (i as f64 + 0.5 * j as f64, s * j as f64);
+                positions.push(Vector3::new(x, y, f(x, y)));
+            }
+        }
+        let id = |i: u32, j: u32| j * (n + 1) + i;
+        let mut triangles = Vec::with_capacity(2 * (n * n) as usize);
+        for j in 0..n {
+            for i in 0..n {
+                triangles.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
+                triangles.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        Mesh {
+            positions,
+            triangles,
+        }
+    }
+
     /// The start vertex of half-edge h.
     #[inline]
     pub fn from_vertex(&self, h: u32) -> u32 {

@@ -4,53 +4,12 @@ use super::curves::{CurveScheme, subdivide_curve};
 use super::mesh::{Mesh, MeshError, NONE};
 use super::surfaces::*;
 
-/// The regular lattice over the rhombus of n × n cells: points (i + j/2, j √3/2, f(x, y)).
 fn lattice(n: u32, f: impl Fn(f64, f64) -> f64) -> Mesh {
-    let s = 0.75f64.sqrt();
-    let mut positions = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f64 + 0.5 * j as f64, s * j as f64);
-            positions.push(Vector3::new(x, y, f(x, y)));
-        }
-    }
-    let id = |i: u32, j: u32| j * (n + 1) + i;
-    let mut triangles = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            triangles.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
-            triangles.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    Mesh {
-        positions,
-        triangles,
-    }
+    Mesh::lattice(n, f)
 }
 
-/// The octahedron (closed, every vertex of valence 4).
 fn octahedron() -> Mesh {
-    let p = [
-        [1.0, 0.0, 0.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, -1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [0.0, 0.0, -1.0],
-    ];
-    Mesh {
-        positions: p.iter().map(|&c| Vector3::from(c)).collect(),
-        triangles: vec![
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ],
-    }
+    Mesh::octahedron()
 }
 
 /// A random cubic with its Laplacian.
@@ -160,27 +119,21 @@ fn loop_and_sqrt3_boundaries_are_the_cubic_b_spline_of_the_boundary_polygon() {
     };
     let polygon = boundary_loop(&mesh);
     let expected = subdivide_curve(&polygon, true, CurveScheme::CubicBSpline, 1).unwrap();
-    let loop_mesh = SurfaceScheme::Loop.step(&mesh).unwrap();
-    let got = boundary_loop(&loop_mesh);
-    assert_eq!(got.len(), expected.len());
-    // The same points, up to where each list starts.
-    let shift = expected
-        .iter()
-        .position(|p| (p - got[0]).norm() < 1e-12)
-        .unwrap();
-    for (k, p) in got.iter().enumerate() {
-        assert!((p - expected[(k + shift) % expected.len()]).norm() < 1e-12);
-    }
-    // √3 uses the same boundary rules.
-    let s = SurfaceScheme::Sqrt3.step(&mesh).unwrap();
-    let got = boundary_loop(&s);
-    assert_eq!(got.len(), expected.len());
-    let shift = expected
-        .iter()
-        .position(|p| (p - got[0]).norm() < 1e-12)
-        .unwrap();
-    for (k, p) in got.iter().enumerate() {
-        assert!((p - expected[(k + shift) % expected.len()]).norm() < 1e-12);
+    // Loop and √3 (which uses Loop's boundary rules): the same points, up to where each
+    // list starts.
+    for scheme in [SurfaceScheme::Loop, SurfaceScheme::Sqrt3] {
+        let got = boundary_loop(&scheme.step(&mesh).unwrap());
+        assert_eq!(got.len(), expected.len());
+        let shift = expected
+            .iter()
+            .position(|p| (p - got[0]).norm() < 1e-12)
+            .unwrap();
+        for (k, p) in got.iter().enumerate() {
+            assert!(
+                (p - expected[(k + shift) % expected.len()]).norm() < 1e-12,
+                "{scheme:?}"
+            );
+        }
     }
 }
 
