@@ -680,6 +680,7 @@ pub fn place_beside(objects: &mut [SceneObject], existing: (Vector3<f32>, Vector
             refinement: false,
             control: false,
             boundary: false,
+            combs: false,
         },
         ..DisplaySettings::default()
     };

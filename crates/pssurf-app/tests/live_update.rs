@@ -22,6 +22,7 @@ fn app() -> App {
         refinement: true,
         control: true,
         boundary: true,
+        combs: false,
     };
     app.view.display.mesh_edges = true;
     app.update_geometry();

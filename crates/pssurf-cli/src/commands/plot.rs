@@ -142,6 +142,10 @@ pub struct PlotArgs {
     /// Draw the control triangles.
     #[arg(long)]
     pub control: bool,
+    /// Draw curvature combs on the sides of the boundary (the longest tooth a tenth of the
+    /// surface's size).
+    #[arg(long)]
+    pub combs: bool,
     /// Draw the boundary.
     #[arg(long)]
     pub boundary: bool,
@@ -269,6 +273,7 @@ pub fn options(args: &PlotArgs, surfaces: &[Surface]) -> Result<PlotOptions> {
             refinement: args.refinement,
             control: args.control,
             boundary: args.boundary,
+            combs: args.combs,
         },
         legend: !args.no_legend,
         lit: args.lit,

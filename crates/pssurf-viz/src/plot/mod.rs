@@ -57,6 +57,9 @@ pub struct Overlays {
     pub control: bool,
     /// The boundary of the surface.
     pub boundary: bool,
+    /// Curvature combs on the sides of the boundary (teeth along the principal normal,
+    /// the longest a tenth of the surface's size).
+    pub combs: bool,
 }
 
 /// How the colour range is chosen.

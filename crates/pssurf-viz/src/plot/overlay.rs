@@ -19,6 +19,45 @@ pub fn overlay_lines(surface: &Surface, overlays: &Overlays, level: u32) -> Vec<
     if overlays.control {
         out.extend(control_net_overlay(surface));
     }
+    if overlays.combs {
+        out.extend(comb_overlay(surface));
+    }
+    out
+}
+
+/// Samples per boundary side of a comb.
+const COMB_TEETH: usize = 60;
+
+/// The curvature combs of the boundary sides: each tooth a short segment, and the envelope
+/// of the tips (pssurf::interrogate::comb); the longest tooth a tenth of the surface's size.
+pub fn comb_overlay(surface: &Surface) -> Vec<Polyline> {
+    use pssurf::interrogate::comb::{boundary_combs, comb_scale_for};
+    let unit = boundary_combs(surface, COMB_TEETH, 1.0);
+    // The diagonal of the bounding box of the boundary points.
+    let (lo, hi) = unit.iter().flatten().fold(
+        (
+            nalgebra::Vector3::repeat(f64::INFINITY),
+            nalgebra::Vector3::repeat(f64::NEG_INFINITY),
+        ),
+        |(lo, hi), t| (lo.inf(&t.point), hi.sup(&t.point)),
+    );
+    let size = (hi - lo).norm().max(1e-300);
+    let scale = comb_scale_for(&unit, 0.1 * size);
+    let mut out = Vec::new();
+    for side in boundary_combs(surface, COMB_TEETH, scale) {
+        for t in &side {
+            out.push(Polyline {
+                points: vec![t.point, t.tip],
+                color: [120, 120, 200],
+                thickness: 1,
+            });
+        }
+        out.push(Polyline {
+            points: side.iter().map(|t| t.tip).collect(),
+            color: [30, 30, 140],
+            thickness: 2,
+        });
+    }
     out
 }
 

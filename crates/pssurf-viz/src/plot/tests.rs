@@ -186,6 +186,7 @@ fn overlays_draw_lines() {
         refinement: true,
         control: true,
         boundary: true,
+        combs: false,
     };
     let lined = plot(&s, &o);
     let orange = lined.pixels.iter().filter(|&&c| c == [230, 120, 0]).count();
@@ -199,4 +200,31 @@ fn overlays_draw_lines() {
         plain.pixels.iter().filter(|&&c| c == [230, 120, 0]).count(),
         0
     );
+}
+
+#[test]
+fn combs_draw_teeth_and_envelopes_on_curved_boundaries_only() {
+    let envelope = |p: &Picture| p.pixels.iter().filter(|&&c| c == [30, 30, 140]).count();
+    let mut o = opts(Show::Shaded);
+    o.overlays.combs = true;
+    // A curved graph: its boundary curves bend, so the teeth stand out.
+    let curved = grid_surface(|p| Hermite {
+        value: p.x * p.x + 0.5 * p.y * p.y,
+        dx: 2.0 * p.x,
+        dy: p.y,
+    });
+    assert!(envelope(&plot(&curved, &o)) > 50);
+    assert_eq!(envelope(&plot(&curved, &opts(Show::Shaded))), 0);
+    // A plane has straight sides: the teeth have no length and the envelope lies on them.
+    let plane = grid_surface(|p| Hermite {
+        value: 0.1 * p.x,
+        dx: 0.1,
+        dy: 0.0,
+    });
+    let curved_tips: Vec<_> = pssurf::interrogate::comb::boundary_combs(&plane, 10, 1.0)
+        .into_iter()
+        .flatten()
+        .filter(|t| (t.tip - t.point).norm() > 1e-12)
+        .collect();
+    assert!(curved_tips.is_empty());
 }

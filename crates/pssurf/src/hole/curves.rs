@@ -184,21 +184,14 @@ impl SurfaceEdge {
     /// run counter-clockwise (the domain to its left). A tensor-product surface has four
     /// sides, a triangular patch three, a UPS surface one per polygon side.
     pub fn sides(surface: Arc<Surface>) -> Vec<SurfaceEdge> {
-        let domain = surface.domain();
-        let Some(outer) = domain.boundary().first() else {
-            return Vec::new();
-        };
-        let n = outer.len();
-        let turns = |k: usize| {
-            crate::geometry::orient_exact(outer[(k + n - 1) % n], outer[k], outer[(k + 1) % n])
-                != 0.0
-        };
-        let corners: Vec<usize> = (0..n).filter(|&k| turns(k)).collect();
-        (0..corners.len())
-            .map(|c| SurfaceEdge {
+        surface
+            .domain()
+            .sides()
+            .into_iter()
+            .map(|(from, to)| SurfaceEdge {
                 surface: surface.clone(),
-                from: outer[corners[c]],
-                to: outer[corners[(c + 1) % corners.len()]],
+                from,
+                to,
             })
             .collect()
     }

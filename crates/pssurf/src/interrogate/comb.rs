@@ -31,6 +31,49 @@ pub fn curvature_comb(c: &NurbsCurve, per_span: usize, scale: f64) -> Vec<CombTo
         .collect()
 }
 
+/// The combs of the sides of a surface's boundary ([`crate::surface::Domain::sides`]):
+/// along each side u(t) = a + t (b − a), `per_side` + 1 teeth of the curve s(u(t)) with
+/// c′ = s_x d_x + s_y d_y and c″ = s_xx d_x² + 2 s_xy d_x d_y + s_yy d_y², d = b − a. Teeth
+/// where the surface cannot be evaluated are left out.
+pub fn boundary_combs(
+    surface: &crate::surface::Surface,
+    per_side: usize,
+    scale: f64,
+) -> Vec<Vec<CombTooth>> {
+    use crate::surface::ParametricSurface;
+    let n = per_side.max(1);
+    surface
+        .domain()
+        .sides()
+        .into_iter()
+        .map(|(a, b)| {
+            let d = b - a;
+            (0..=n)
+                .filter_map(|k| {
+                    let t = k as f64 / n as f64;
+                    let uv = if k == n { b } else { a + d * t };
+                    let j = surface.jet(uv).ok()?.jet;
+                    let d1 = j.dx * d.x + j.dy * d.y;
+                    let d2 = j.dxx * (d.x * d.x) + j.dxy * (2.0 * d.x * d.y) + j.dyy * (d.y * d.y);
+                    Some(tooth(t, [j.value, d1, d2], scale))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The tooth length factor that makes the longest tooth `length` long (1 when every curve
+/// is straight).
+pub fn comb_scale_for(combs: &[Vec<CombTooth>], length: f64) -> f64 {
+    let max = combs
+        .iter()
+        .flatten()
+        .map(|t| t.curvature)
+        .filter(|k| k.is_finite())
+        .fold(0.0, f64::max);
+    if max > 0.0 { length / max } else { 1.0 }
+}
+
 /// The tooth at t from the curve's point and first two derivatives.
 fn tooth(t: f64, [p, d1, d2]: [Vector3<f64>; 3], scale: f64) -> CombTooth {
     let speed2 = d1.norm_squared();
@@ -62,6 +105,47 @@ fn tooth(t: f64, [p, d1, d2]: [Vector3<f64>; 3], scale: f64) -> CombTooth {
 mod tests {
     use super::*;
     use crate::test_util::*;
+
+    /// The cylinder patch's sides: the base arc has κ = 1/r, the ruling κ = 0, and the
+    /// teeth of the arc point away from the axis.
+    #[test]
+    fn boundary_combs_of_a_cylinder_patch_are_its_arcs_and_rulings() {
+        use crate::ps::quadrics::cylinder_patch;
+        use crate::surface::Surface;
+        let (r, h) = (2.0, 3.0);
+        let s = Surface::RationalBezier(cylinder_patch(r, h));
+        let combs = boundary_combs(&s, 16, 0.5);
+        assert_eq!(combs.len(), 3);
+        let mut arcs = 0;
+        for side in &combs {
+            assert_eq!(side.len(), 17);
+            let on_base = side.iter().all(|t| t.point.z.abs() < 1e-12);
+            let straight = side.iter().all(|t| t.curvature.abs() < 1e-12);
+            if on_base {
+                arcs += 1;
+                for t in side {
+                    assert_near!(t.curvature * r, 1.0, 1e-12);
+                    let tip = t.tip.xy().norm();
+                    assert_near!(tip, r + 0.5 / r, 1e-12);
+                }
+            } else if !straight {
+                // The diagonal side is an ellipse arc on the cylinder: curved, and every tooth
+                // points away from the axis.
+                for t in side {
+                    assert!(t.tip.xy().norm() >= t.point.xy().norm() - 1e-12);
+                }
+            }
+        }
+        assert_eq!(arcs, 1);
+        // The auto scale makes the longest tooth the asked length.
+        let scale = comb_scale_for(&combs, 0.7);
+        let longest = boundary_combs(&s, 16, scale)
+            .iter()
+            .flatten()
+            .map(|t| (t.tip - t.point).norm())
+            .fold(0.0, f64::max);
+        assert_near!(longest, 0.7, 1e-12);
+    }
 
     /// A circular arc as a rational quadratic NURBS: every tooth has κ = 1/R to 1e-12 and its
     /// tip lies on the circle of radius R + scale/R (outward).

@@ -122,6 +122,24 @@ impl Domain {
         Self::from_loops(loops).expect("a valid triangulation has a closed boundary")
     }
 
+    /// The sides of the outer boundary: the runs between its corners, the vertices where it
+    /// turns (decided by the exact orientation test), in the loop's order. A rectangle has
+    /// four, a triangle three, a lattice polygon one per side.
+    pub fn sides(&self) -> Vec<(Point2<f64>, Point2<f64>)> {
+        let Some(outer) = self.boundary().first() else {
+            return Vec::new();
+        };
+        let n = outer.len();
+        let turns = |k: usize| {
+            crate::geometry::orient_exact(outer[(k + n - 1) % n], outer[k], outer[(k + 1) % n])
+                != 0.0
+        };
+        let corners: Vec<usize> = (0..n).filter(|&k| turns(k)).collect();
+        (0..corners.len())
+            .map(|c| (outer[corners[c]], outer[corners[(c + 1) % corners.len()]]))
+            .collect()
+    }
+
     /// The boundary loops (each closed: its last point joins its first).
     pub fn boundary(&self) -> &[Vec<Point2<f64>>] {
         &self.loops
