@@ -133,7 +133,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             "three meshes of about {} triangles",
             crate::budget::count(fin)
         ),
-        memory: fin.saturating_mul(3 * 250),
+        memory: crate::budget::load_memory(0).saturating_add(fin.saturating_mul(3 * 300)),
         output: fin.saturating_mul(3 * 60),
     }
     .check()?;

@@ -96,7 +96,7 @@ pub enum HoleError {
     },
     /// The normals point to different sides.
     #[error(
-        "the normals of curves {} and {} point to opposite sides of the hole (flip one of them)",
+        "the normals of curves {} and {} point to opposite sides of the hole (flip one of them), or the curves cross each other",
         curves.0,
         curves.1
     )]
