@@ -55,7 +55,8 @@ impl GeometryCache {
     /// updates only `pieces` (the group's support) in the object's mesh and in the combined
     /// geometry, and records the rewritten ranges for the GPU upload. Does nothing when the
     /// object was not drawn with these settings (the next [`GeometryCache::update`] then
-    /// rebuilds it). The colour scale of a curvature plot is kept as it was.
+    /// rebuilds it; so does an object with curvature combs, which belong to the whole
+    /// surface). The colour scale of a curvature plot is kept as it was.
     pub fn update_vertex(
         &mut self,
         scene: &Scene,
@@ -65,6 +66,10 @@ impl GeometryCache {
         pieces: &[usize],
         display: &DisplaySettings,
     ) {
+        // Combs belong to the whole surface: the next update rebuilds the object instead.
+        if display.overlays.combs {
+            return;
+        }
         let scale = scene.objects.get(object).and_then(|o| self.scale_of(o.id));
         let Some((key, settings)) = &mut self.key else {
             return;

@@ -11,8 +11,8 @@ use pssurf::interrogate::{
 use pssurf::surface::{PieceKind, PiecewiseSurface};
 use pssurf_viz::colormap::{ColorMap, ColorScale, DataRange};
 use pssurf_viz::plot::{
-    Overlays, Polyline, Range, cell_of_piece, cell_overlay, cell_pieces, control_overlay,
-    overlay_cells, range_scale,
+    Overlays, Polyline, Range, cell_of_piece, cell_overlay, cell_pieces, comb_overlay,
+    control_overlay, overlay_cells, range_scale,
 };
 
 use crate::edit;
@@ -380,6 +380,13 @@ fn object_lines(
         }
         offsets
     });
+    // Curvature combs of the boundary sides, after everything else: they belong to the
+    // whole surface, so a vertex edit rebuilds the object (GeometryCache::update_vertex).
+    if overlays.combs {
+        for pl in comb_overlay(surface) {
+            placement.segments(&pl, &mut lines);
+        }
+    }
     let layout = MeshLayout {
         level,
         kind: Some(kind),

@@ -54,6 +54,8 @@ fn display_ui(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
         ui.checkbox(&mut d.overlays.refinement, "PS refinement");
         ui.checkbox(&mut d.overlays.control, "control triangles");
         ui.checkbox(&mut d.overlays.boundary, "boundary");
+        ui.checkbox(&mut d.overlays.combs, "curvature combs")
+            .on_hover_text("Curvature combs on the sides of the boundary (the longest tooth a tenth of the surface's size)");
     });
     for message in refused {
         cx.status(message);

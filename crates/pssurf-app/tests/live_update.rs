@@ -136,3 +136,39 @@ fn the_gpu_gets_only_the_rewritten_ranges_and_draws_what_a_full_upload_draws() {
     assert!(partial == whole, "a partial upload draws another picture");
     assert!(first != partial, "the drag changed nothing on screen");
 }
+
+/// With curvature combs on, a drag rebuilds the object: its combs follow the new boundary
+/// and equal those of a full rebuild.
+#[test]
+fn combs_follow_a_drag_by_rebuilding_the_object() {
+    let mut app = app();
+    let plain_lines = app.runtime.cache.geometry.lines.len();
+    app.view.display.overlays.combs = true;
+    app.update_geometry();
+    let with_combs = app.runtime.cache.geometry.lines.clone();
+    assert!(
+        with_combs.len() > plain_lines,
+        "{} {plain_lines}",
+        with_combs.len()
+    );
+    // A boundary vertex of the paraboloid moves: its combs change.
+    let tri = app.doc.scene.objects[1]
+        .surface
+        .ps_basis()
+        .unwrap()
+        .triangulation()
+        .clone();
+    let vertex = (0..tri.vertex_count())
+        .find(|&v| tri.is_boundary_vertex(v))
+        .unwrap();
+    drag(&mut app, vertex, 0.3);
+    app.update_geometry();
+    let after = app.runtime.cache.geometry.lines.clone();
+    assert_ne!(after, with_combs);
+    // The same as building from scratch.
+    let mut fresh = App::demo();
+    fresh.view.display = app.view.display.clone();
+    fresh.doc.scene = app.doc.scene.clone();
+    fresh.update_geometry();
+    assert_eq!(fresh.runtime.cache.geometry.lines, after);
+}

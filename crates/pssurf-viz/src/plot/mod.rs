@@ -15,8 +15,8 @@ use crate::raster::{GBuffer, ScreenVertex, draw_segment, rasterize, shade_pixels
 
 mod overlay;
 pub use overlay::{
-    cell_of_piece, cell_overlay, cell_pieces, control_net_overlay, control_overlay, overlay_cells,
-    overlay_lines,
+    cell_of_piece, cell_overlay, cell_pieces, comb_overlay, control_net_overlay, control_overlay,
+    overlay_cells, overlay_lines,
 };
 
 /// What the picture shows.
