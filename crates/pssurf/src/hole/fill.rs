@@ -630,16 +630,6 @@ impl HoleFill {
     /// The patch at the current level with its interior control triangles by `method`
     /// (5.4.2–5.4.3). The boundary control triangles are the same for every method.
     pub fn patch(&self, method: Interior) -> Result<Ups<Vector3<f64>>, HoleError> {
-        interior(self, method)
-    }
-
-    /// The instant-update patch.
-    pub(crate) fn instant(&self) -> &Ups<Vector3<f64>> {
-        &self.instant
-    }
-
-    /// The initial solution subdivided to the current level.
-    pub(crate) fn initial(&self) -> &Ups<Vector3<f64>> {
-        &self.initial
+        interior(&self.instant, &self.initial, self.level, method)
     }
 }

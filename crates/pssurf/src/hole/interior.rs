@@ -4,7 +4,6 @@
 use nalgebra::Vector3;
 
 use super::HoleError;
-use super::fill::HoleFill;
 use crate::ps::Energy;
 use crate::ps::fair::{FairOptions, fair};
 use crate::surface::{Surface, UniformSurface, UpsSurface};
@@ -77,15 +76,21 @@ impl Interior {
     }
 }
 
-/// The patch of `fill` at its current level with interior triangles by `method`.
-pub(crate) fn interior(fill: &HoleFill, method: Interior) -> Result<Ups<Vector3<f64>>, HoleError> {
-    let instant = fill.instant();
+/// The patch at refinement `level` with interior triangles by `method`, from the
+/// instant-update patch (its boundary the latest fit) and the initial solution subdivided to
+/// the same level.
+pub(crate) fn interior(
+    instant: &Ups<Vector3<f64>>,
+    initial: &Ups<Vector3<f64>>,
+    level: usize,
+    method: Interior,
+) -> Result<Ups<Vector3<f64>>, HoleError> {
     Ok(match method {
         Interior::Instant => instant.clone(),
-        Interior::Copy => with_boundary_of(fill.initial(), instant, 0),
-        Interior::Average => averaged(&with_boundary_of(fill.initial(), instant, 0)),
+        Interior::Copy => with_boundary_of(initial, instant, 0),
+        Interior::Average => averaged(&with_boundary_of(initial, instant, 0)),
         Interior::Bridge => bridged(instant),
-        Interior::Threshold { percent } => thresholded(instant, fill.level(), percent)?,
+        Interior::Threshold { percent } => thresholded(instant, level, percent)?,
         Interior::Fair => fair_interior(instant)?,
     })
 }
