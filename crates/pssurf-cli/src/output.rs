@@ -191,3 +191,18 @@ pub fn write_streamed(
     };
     write_output(path.unwrap_or(Path::new("-")), Durability::Atomic, run)
 }
+
+/// Creates the folder `path` (and its parents) for a command that writes several files; a
+/// path that exists and is not a folder, or one that cannot be created, is one clear error.
+pub fn create_folder(path: &Path) -> Result<()> {
+    if path.exists() && !path.is_dir() {
+        anyhow::bail!("{} exists and is not a folder", path.display());
+    }
+    std::fs::create_dir_all(path).map_err(|e| {
+        anyhow::anyhow!(
+            "cannot create the folder {}: {}",
+            path.display(),
+            pssurf::io::io_cause(&e)
+        )
+    })
+}

@@ -105,6 +105,11 @@ fn bad_meshes_get_one_clear_line() {
             "v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
             "finite",
         ),
+        (
+            "flat.obj",
+            "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n",
+            "collinear",
+        ),
         ("junk.ply", "not a ply file", "junk.ply"),
         ("junk.stl", "", "junk.stl"),
     ];

@@ -292,3 +292,21 @@ pub fn circular_arc(radius: f64, half: f64) -> crate::nurbs::NurbsCurve {
     )
     .unwrap()
 }
+
+/// y = x³ − x on [−1, 1] as a cubic Bézier curve in the plane z = 0 (the control points of the
+/// polynomial): one inflection, at x = 0.
+pub fn cubic_graph_curve() -> crate::nurbs::NurbsCurve {
+    use nalgebra::Vector3;
+    crate::nurbs::NurbsCurve::try_new(
+        3,
+        vec![-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector3::new(-1.0, 0.0, 0.0),
+            Vector3::new(-1.0 / 3.0, 4.0 / 3.0, 0.0),
+            Vector3::new(1.0 / 3.0, -4.0 / 3.0, 0.0),
+            Vector3::new(1.0, 0.0, 0.0),
+        ],
+        None,
+    )
+    .expect("a valid cubic")
+}

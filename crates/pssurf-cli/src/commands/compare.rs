@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Result, anyhow};
 use nalgebra::{Point2, Vector3};
 use pssurf::interrogate::{CurvatureQuantity, PrincipalCurvatures, SampledSurface};
 use pssurf::io::Durability;
@@ -24,7 +24,8 @@ pub struct CompareArgs {
     /// The coarse control mesh (.obj, .ply or .stl).
     #[arg(value_name = "MESH")]
     pub input: PathBuf,
-    /// Subdivision steps of each scheme (√3 gets twice as many, the same refinement).
+    /// Subdivision steps of Loop and the butterfly (4^N triangles per triangle); √3 gets the
+    /// number of steps whose 3^M is nearest, M = round(N log 4 / log 3).
     #[arg(long, default_value_t = 3)]
     pub times: u32,
     /// The quantity to compare.
@@ -116,6 +117,11 @@ fn ps_interpolant(mesh: &Mesh) -> Option<Surface> {
         .map(Surface::Functional)
 }
 
+/// The √3 steps whose refinement 3^M is nearest to 4^N: M = round(N log 4 / log 3).
+fn sqrt3_steps(n: u32) -> u32 {
+    (n as f64 * 4f64.ln() / 3f64.ln()).round() as u32
+}
+
 /// Runs `pssurf compare-subdivision`.
 pub fn run(args: &CompareArgs) -> Result<()> {
     let coarse = pssurf_viz::import::read_mesh(&args.input).map_err(|e| anyhow!(e))?;
@@ -123,8 +129,10 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         .topology()
         .map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
     let t = coarse.triangles.len() as u64;
+    let sqrt3_times = sqrt3_steps(args.times);
     let fin = 4u64
         .checked_pow(args.times)
+        .max(3u64.checked_pow(sqrt3_times))
         .and_then(|f| f.checked_mul(t))
         .unwrap_or(u64::MAX);
     crate::budget::Estimate {
@@ -137,8 +145,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         output: fin.saturating_mul(3 * 60),
     }
     .check()?;
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create the folder {}", args.output.display()))?;
+    crate::output::create_folder(&args.output)?;
     let schemes = [
         (
             SurfaceScheme::Loop,
@@ -147,8 +154,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         ),
         (
             SurfaceScheme::Sqrt3,
-            2 * args.times,
-            "approximating; C² where regular, C¹ at extraordinary vertices; twice the steps (3² = 9 triangles per two steps ≈ 4 per Loop step)",
+            sqrt3_times,
+            "approximating; C² where regular, C¹ at extraordinary vertices; its steps chosen so that 3^M is nearest to Loop's 4^N triangles per triangle",
         ),
         (
             SurfaceScheme::Butterfly,
@@ -258,7 +265,7 @@ fn page(
     }
     s.push_str("</div>\n");
     if !height_field {
-        s.push_str("<p>The mesh is not a height field over a planar triangulation, so there is no PS-spline panel.</p>\n");
+        s.push_str("<p>The mesh is not a height field over a planar triangulation (or its PS interpolant could not be built), so there is no PS-spline panel.</p>\n");
     }
     s.push_str("</body></html>\n");
     s

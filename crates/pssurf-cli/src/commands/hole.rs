@@ -219,13 +219,45 @@ fn holes_from_spec(path: &Path) -> Result<Vec<HoleBoundary>> {
     Ok(vec![HoleBoundary::new(curves)?])
 }
 
-/// The surfaces of a scene or surface file.
+/// Whether a scene object's placement (written by the application) moves, turns or scales it.
+fn is_placed(object: &serde_json::Value) -> bool {
+    let Some(t) = object.get("transform") else {
+        return false;
+    };
+    let zeros = |key: &str| {
+        t.get(key)
+            .and_then(|v| v.as_array())
+            .is_none_or(|a| a.iter().all(|x| x.as_f64() == Some(0.0)))
+    };
+    !(zeros("translate")
+        && zeros("rotate_deg")
+        && t.get("scale").is_none_or(|s| s.as_f64() == Some(1.0)))
+}
+
+/// The surfaces of a scene or surface file. Objects the application placed elsewhere are
+/// refused: the hole's curves are taken in each surface's own coordinates.
 fn scene_surfaces(path: &Path) -> Result<Vec<(String, Arc<Surface>)>> {
     Ok(match super::info::scene_objects(path)? {
-        Some(objects) => objects
-            .into_iter()
-            .map(|o| (o.name, Arc::new(o.surface)))
-            .collect(),
+        Some(objects) => {
+            let text = crate::table::read_text(path)?;
+            let raw: serde_json::Value = serde_json::from_str(&text)?;
+            let placed = raw["objects"]
+                .as_array()
+                .map(|a| a.iter().map(is_placed).collect::<Vec<_>>())
+                .unwrap_or_default();
+            if let Some(k) = placed.iter().position(|&p| p) {
+                bail!(
+                    "{}: object {} ({}) is moved, turned or scaled in the scene; fill-hole takes surfaces at their own place (reset the placement in the application)",
+                    path.display(),
+                    k + 1,
+                    objects[k].name
+                );
+            }
+            objects
+                .into_iter()
+                .map(|o| (o.name, Arc::new(o.surface)))
+                .collect()
+        }
         None => vec![(
             "surface".to_string(),
             Arc::new(crate::budget::load_surface(path)?),
@@ -374,8 +406,7 @@ pub struct ExampleArgs {
 /// DIR/NAME-METHOD-patch-K.json for every interior method.
 pub fn run_example(args: &ExampleArgs) -> Result<()> {
     let opts = args.iteration.options()?;
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create the folder {}", args.output.display()))?;
+    crate::output::create_folder(&args.output)?;
     let methods: Vec<Interior> = if args.all_methods {
         Interior::ALL.to_vec()
     } else {

@@ -47,8 +47,8 @@ impl BoundaryCurve for CurveFns {
 pub enum NormalField {
     /// The same normal everywhere (a curve in a planar surrounding surface, or a plane cut).
     Constant(Vector3<f64>),
-    /// A vector-valued NURBS curve n(t) on the same parameter interval (its "points" are
-    /// normal vectors), normalised where used.
+    /// A vector-valued NURBS curve (its "points" are normal vectors), normalised where used;
+    /// its parameter interval is mapped proportionally onto the boundary curve's.
     Curve(NurbsCurve),
 }
 

@@ -92,7 +92,7 @@ pub fn sphere_hole(radius: f64) -> Result<HoleExample, HoleError> {
     let holes = two_curve_gap(on_sphere(north), on_sphere(south), on_sphere(meridian))?;
     let patches = Quadric::Sphere { radius, sectors: 6 }
         .bezier_patches()
-        .map_err(|e| HoleError::Fair(e.to_string()))?;
+        .map_err(|e| HoleError::Evaluation(e.to_string()))?;
     Ok(HoleExample {
         name: "hole-sphere",
         holes: holes.into_iter().collect(),
@@ -268,7 +268,7 @@ pub fn degenerate_nurbs(r: f64, h: f64) -> Result<HoleExample, HoleError> {
         points,
         Some(vec![1.0, 1.0, w, w, 1.0, 1.0]),
     )
-    .map_err(|e| HoleError::Fair(e.to_string()))?;
+    .map_err(|e| HoleError::Evaluation(e.to_string()))?;
     let surface = Arc::new(Surface::Nurbs(nurbs));
     let edge = |from: (f64, f64), to: (f64, f64)| -> DynCurve {
         Box::new(SurfaceEdge {

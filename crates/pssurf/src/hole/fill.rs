@@ -373,12 +373,10 @@ impl HoleFill {
     /// ([`HoleBoundary::is_singular_corner`]): there the normals cannot be met on that edge
     /// at any level.
     fn singular_corner_edge(&self, k: usize) -> bool {
-        let verts = self.loop_vertices();
-        let n = verts.len();
-        let (side, m, steps) = verts[k];
+        let (side, m, steps) = self.loop_vertices()[k];
         let ns = self.sides.len();
         let singular = |s: usize| self.boundary.is_singular_corner(self.sides[s].curve);
-        (m == 0 && singular(side)) || (m + 1 == steps && singular((side + 1) % ns)) || n == 0
+        (m == 0 && singular(side)) || (m + 1 == steps && singular((side + 1) % ns))
     }
 
     /// The largest normal angle (degrees) away from singular corners.

@@ -124,9 +124,13 @@ pub enum HoleError {
     /// The UPS machinery failed (cannot happen for the standard polygons).
     #[error("{0}")]
     Ups(UpsError),
-    /// Fairing or evaluation failed.
-    #[error("{0}")]
+    /// Constrained fairing of the interior failed.
+    #[error("fairing the interior failed: {0}")]
     Fair(String),
+    /// A surface or curve the hole filler built could not be evaluated (a built-in example's
+    /// surface, the patch at a boundary point).
+    #[error("{0}")]
+    Evaluation(String),
 }
 
 /// How to fill a hole.

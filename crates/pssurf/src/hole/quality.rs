@@ -73,7 +73,10 @@ pub fn quality(fill: &HoleFill, patch: &Ups<Vector3<f64>>) -> Result<QualityRepo
             let t = (i as f64 + 0.5) / SAMPLES_PER_CURVE as f64;
             let measure_g1 = t >= lo && t <= hi;
             let uv = Point2::from(a.coords * (1.0 - t) + c.coords * t);
-            let jet = ps.jet(uv).map_err(|e| HoleError::Fair(e.to_string()))?.jet;
+            let jet = ps
+                .jet(uv)
+                .map_err(|e| HoleError::Evaluation(e.to_string()))?
+                .jet;
             let (t, distance) = b.closest(curve, jet.value, t);
             g0.push(distance);
             let given = b.unit_normal(curve, t);

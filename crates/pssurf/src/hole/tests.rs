@@ -525,3 +525,157 @@ fn the_degenerate_nurbs_patch_is_replaced_with_its_apex_a_singular_corner() {
         .fold(0.0, f64::max);
     assert!(worst < 0.01 * q.model_size, "{worst}");
 }
+
+/// A random unit vector.
+fn random_unit(r: &mut rand_chacha::ChaCha8Rng) -> Vector3<f64> {
+    loop {
+        let v = Vector3::from_fn(|_, _| crate::test_util::uniform(r, -1.0, 1.0));
+        if v.norm() > 0.1 && v.norm() < 1.0 {
+            return v.normalize();
+        }
+    }
+}
+
+#[test]
+fn the_fitting_formulas_are_the_least_squares_solutions() {
+    use super::fitting::{alpha_mid, beta_mid};
+    use nalgebra::{DMatrix, DVector};
+    let mut r = crate::test_util::rng(183);
+    for _ in 0..200 {
+        let u = |r: &mut _| crate::test_util::uniform(r, -2.0, 2.0);
+        // (5.23): min over α_k of |α_iγ_i − α_kγ_k − q_ik|² + |α_kγ_k − α_jγ_j − q_kj|².
+        let gk = random_unit(&mut r);
+        let (ag_i, ag_j) = (
+            random_unit(&mut r) * u(&mut r),
+            random_unit(&mut r) * u(&mut r),
+        );
+        let (q_ik, q_kj) = (
+            random_unit(&mut r) * u(&mut r),
+            random_unit(&mut r) * u(&mut r),
+        );
+        let a = DMatrix::from_fn(6, 1, |i, _| if i < 3 { -gk[i] } else { gk[i - 3] });
+        let b = DVector::from_fn(6, |i, _| {
+            if i < 3 {
+                q_ik[i] - ag_i[i]
+            } else {
+                q_kj[i - 3] + ag_j[i - 3]
+            }
+        });
+        let ls = a.clone().svd(true, true).solve(&b, 1e-15).unwrap()[0];
+        let got = alpha_mid(gk, ag_i, ag_j, q_ik, q_kj);
+        assert!(
+            (got - ls).abs() < 1e-12 * ls.abs().max(1.0),
+            "{got} vs {ls}"
+        );
+        // (5.25): min over β_k, β_ik, β_kj of |β_ik δ_ik − ½(w_i + β_k δ_k)|² +
+        // |β_kj δ_kj − ½(β_k δ_k + w_j)|².
+        let (dk, dik, dkj) = (
+            random_unit(&mut r),
+            random_unit(&mut r),
+            random_unit(&mut r),
+        );
+        let (w_i, w_j) = (
+            random_unit(&mut r) * u(&mut r),
+            random_unit(&mut r) * u(&mut r),
+        );
+        let a = DMatrix::from_fn(6, 3, |i, c| match (i < 3, c) {
+            (true, 0) | (false, 0) => -0.5 * dk[i % 3],
+            (true, 1) => dik[i],
+            (false, 2) => dkj[i - 3],
+            _ => 0.0,
+        });
+        let b = DVector::from_fn(6, |i, _| {
+            if i < 3 {
+                0.5 * w_i[i]
+            } else {
+                0.5 * w_j[i - 3]
+            }
+        });
+        let ls = a.svd(true, true).solve(&b, 1e-15).unwrap()[0];
+        let (got, flat) = beta_mid(dk, w_i, w_j, dik, dkj);
+        assert!(!flat);
+        assert!(
+            (got - ls).abs() < 1e-10 * ls.abs().max(1.0),
+            "{got} vs {ls}"
+        );
+    }
+}
+
+#[test]
+fn random_quadratic_graphs_over_regular_polygons_are_reproduced_by_the_initial_solution() {
+    // The triangle, rhombus and hexagon are affine images of the regular 3-, 4- and 6-gon, so
+    // the lift of a regular polygon's edges to the graph of a quadratic is a quadratic of the
+    // domain along every side, and the initial solution is the quadratic itself.
+    let mut r = crate::test_util::rng(184);
+    for round in 0..12 {
+        let k = [3, 4, 6][round % 3];
+        let u = |r: &mut _, lo, hi| crate::test_util::uniform(r, lo, hi);
+        let a: [f64; 5] = std::array::from_fn(|_| u(&mut r, -0.5, 0.5));
+        let (cx, cy, radius, turn) = (
+            u(&mut r, -3.0, 3.0),
+            u(&mut r, -3.0, 3.0),
+            u(&mut r, 0.2, 5.0),
+            u(&mut r, 0.0, 6.3),
+        );
+        let q =
+            move |x: f64, y: f64| a[0] * x * x + a[1] * x * y + a[2] * y * y + a[3] * x + a[4] * y;
+        let grad = move |x: f64, y: f64| {
+            (
+                2.0 * a[0] * x + a[1] * y + a[3],
+                a[1] * x + 2.0 * a[2] * y + a[4],
+            )
+        };
+        let corner = move |i: usize| {
+            let t = turn + 2.0 * std::f64::consts::PI * i as f64 / k as f64;
+            (cx + radius * t.cos(), cy + radius * t.sin())
+        };
+        let curves: Vec<DynCurve> = (0..k)
+            .map(|i| {
+                let ((x0, y0), (x1, y1)) = (corner(i), corner((i + 1) % k));
+                let xy = move |t: f64| (x0 + t * (x1 - x0), y0 + t * (y1 - y0));
+                Box::new(CurveFns {
+                    point: Arc::new(move |t| {
+                        let (x, y) = xy(t);
+                        Vector3::new(x, y, q(x, y))
+                    }),
+                    tangent: Arc::new(move |t| {
+                        let (x, y) = xy(t);
+                        let (gx, gy) = grad(x, y);
+                        let (dx, dy) = (x1 - x0, y1 - y0);
+                        Vector3::new(dx, dy, gx * dx + gy * dy)
+                    }),
+                    normal: Arc::new(move |t| {
+                        let (x, y) = xy(t);
+                        let (gx, gy) = grad(x, y);
+                        Vector3::new(-gx, -gy, 1.0)
+                    }),
+                }) as DynCurve
+            })
+            .collect();
+        let hole = HoleBoundary::new(curves).unwrap();
+        let mut fill = HoleFill::new(hole, 1e-4, 0.25).unwrap();
+        let size = fill.boundary().size();
+        let error = |fill: &HoleFill, boundary_only: bool| {
+            let ps = fill.patch(Interior::Fair).unwrap().to_ps().unwrap();
+            let tri = ps.basis().triangulation();
+            (0..tri.vertex_count())
+                .filter(|&i| !boundary_only || tri.is_boundary_vertex(i))
+                .map(|i| {
+                    let p = ps.point(tri.vertex(i)).unwrap();
+                    (p.z - q(p.x, p.y)).abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        // The initial solution (and its faired interior vertex) is the quadratic.
+        let e0 = error(&fill, false);
+        assert!(e0 < 1e-12 * size, "{k}-gon at level 0: {e0}");
+        // Refinement keeps the boundary vertices on it. Inside it does not: (5.7) makes the
+        // new vertices' cross-boundary derivative perpendicular to the edge, which the graph's
+        // is not unless its gradient runs along or across the edge (measured up to 0.6 at
+        // level 2 on these steep graphs; docs/holes.md).
+        fill.step().unwrap();
+        fill.step().unwrap();
+        let e2 = error(&fill, true);
+        assert!(e2 < 1e-12 * size, "{k}-gon at level 2, boundary: {e2}");
+    }
+}

@@ -183,18 +183,7 @@ mod tests {
             assert_eq!(t.tip, t.point);
         }
         // y = x³ − x on [−1, 1] as a Bézier cubic (control points of the polynomial).
-        let cubic = NurbsCurve::try_new(
-            3,
-            vec![-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0],
-            vec![
-                Vector3::new(-1.0, 0.0, 0.0),
-                Vector3::new(-1.0 / 3.0, 4.0 / 3.0, 0.0),
-                Vector3::new(1.0 / 3.0, -4.0 / 3.0, 0.0),
-                Vector3::new(1.0, 0.0, 0.0),
-            ],
-            None,
-        )
-        .unwrap();
+        let cubic = cubic_graph_curve();
         let comb = curvature_comb(&cubic, 20, 0.1);
         for t in &comb {
             // Closed form for y = x³ − x at x = t: κ = |6x| / (1 + (3x² − 1)²)^{3/2}.

@@ -171,18 +171,7 @@ mod tests {
     /// and 0; y = x⁴ (y'' = 12 x²) none: its curvature touches zero without changing sign.
     #[test]
     fn inflections_of_cubics_and_quartics() {
-        let cubic = NurbsCurve::try_new(
-            3,
-            vec![-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0],
-            vec![
-                Vector3::new(-1.0, 0.0, 0.0),
-                Vector3::new(-1.0 / 3.0, 4.0 / 3.0, 0.0),
-                Vector3::new(1.0 / 3.0, -4.0 / 3.0, 0.0),
-                Vector3::new(1.0, 0.0, 0.0),
-            ],
-            None,
-        )
-        .unwrap();
+        let cubic = cubic_graph_curve();
         let found = inflections(&cubic, Vector3::z(), 7);
         assert_eq!(found.len(), 1, "{found:?}");
         assert!(found[0].abs() < 1e-15, "{found:?}");

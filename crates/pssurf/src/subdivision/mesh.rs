@@ -42,6 +42,9 @@ pub enum MeshError {
     /// A triangle with a repeated vertex.
     #[error("triangle {0} uses the same vertex twice")]
     Degenerate(usize),
+    /// A triangle whose corners are distinct but collinear.
+    #[error("triangle {0} has no area: its corners are collinear")]
+    Flat(usize),
     /// A position that is not finite.
     #[error("vertex {0} has a coordinate that is not a finite number (or beyond ±1e60)")]
     NotFinite(usize),
@@ -62,6 +65,18 @@ pub enum MeshError {
     /// A vertex where two fans of triangles meet (a bow tie).
     #[error("vertex {0} is not manifold: two separate fans of triangles meet there")]
     NonManifoldVertex(u32),
+}
+
+/// Whether three points lie on one line, decided exactly: their projections onto the three
+/// coordinate planes are all collinear (by the exact orientation test).
+fn collinear([a, b, c]: [Vector3<f64>; 3]) -> bool {
+    use crate::geometry::orient_exact;
+    use nalgebra::Point2;
+    let on = |i: usize, j: usize| {
+        let p = |v: Vector3<f64>| Point2::new(v[i], v[j]);
+        orient_exact(p(a), p(b), p(c)) == 0.0
+    };
+    on(0, 1) && on(1, 2) && on(2, 0)
 }
 
 /// The edges of a mesh: each half-edge (corner k of triangle t, from its vertex k to k + 1,
@@ -177,6 +192,13 @@ impl Mesh {
             if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
                 return Err(MeshError::Degenerate(k));
             }
+        }
+        if let Some(k) = self
+            .triangles
+            .par_iter()
+            .position_first(|t| collinear(t.map(|v| self.positions[v as usize])))
+        {
+            return Err(MeshError::Flat(k));
         }
         // Half-edges sorted by their undirected edge.
         let mut keys: Vec<(u64, u32)> = (0..3 * t as u32)
