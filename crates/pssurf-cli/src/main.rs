@@ -127,7 +127,8 @@ enum Command {
     #[command(subcommand)]
     Mesh(commands::mesh::MeshWhat),
     /// Run a built-in hole-filling example of the thesis (hole-sphere, two-cylinders,
-    /// prism-cap, two-curve-gap) and write its scene, patches and quality report.
+    /// prism-cap, two-curve-gap, degenerate-nurbs) and write its scene, patches and quality
+    /// report.
     Example(commands::hole::ExampleArgs),
     /// Subdivide a polygon (CSV): Chaikin, cubic B-spline or the four-point scheme, open or
     /// closed.
