@@ -1,0 +1,183 @@
+//! Evaluating a functional PS-spline at many points, in parallel, for the Python layer.
+
+use nalgebra::Point2;
+use pssurf::bezier::Jet;
+use pssurf::interrogate::PrincipalCurvatures;
+use pssurf::ps::PsSpline;
+use pssurf::surface::graph_jet;
+use pyo3::PyResult;
+
+use crate::errors::value_error;
+
+/// Which partial derivative ∂^(dx+dy) s / ∂x^dx ∂y^dy to return.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Derivative {
+    dx: u32,
+    dy: u32,
+}
+
+impl Derivative {
+    /// Checks the orders: non-negative by type; any total order is allowed (those above 2
+    /// are zero inside each quadratic piece).
+    pub fn new(dx: u32, dy: u32) -> PyResult<Self> {
+        if dx > 64 || dy > 64 {
+            return Err(value_error(format!(
+                "derivative orders dx={dx}, dy={dy} are absurd"
+            )));
+        }
+        Ok(Derivative { dx, dy })
+    }
+
+    /// The total order.
+    fn order(self) -> u32 {
+        self.dx + self.dy
+    }
+
+    /// The entry of a jet (zero for orders above two: the pieces are quadratic).
+    fn pick(self, j: &Jet<f64>) -> f64 {
+        match (self.dx, self.dy) {
+            (0, 0) => j.value,
+            (1, 0) => j.dx,
+            (0, 1) => j.dy,
+            (2, 0) => j.dxx,
+            (1, 1) => j.dxy,
+            (0, 2) => j.dyy,
+            _ => 0.0,
+        }
+    }
+}
+
+/// What to do at points outside the triangulation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Outside {
+    /// Return this value.
+    Fill(f64),
+    /// Fail, naming the first such point.
+    Error,
+}
+
+impl From<Option<f64>> for Outside {
+    fn from(fill: Option<f64>) -> Self {
+        fill.map_or(Outside::Error, Outside::Fill)
+    }
+}
+
+/// The points (x[k], y[k]), or an error when the lengths differ.
+fn zip_points(x: &[f64], y: &[f64]) -> Result<Vec<Point2<f64>>, String> {
+    if x.len() != y.len() {
+        return Err(format!("x has {} entries but y has {}", x.len(), y.len()));
+    }
+    Ok(x.iter().zip(y).map(|(&a, &b)| Point2::new(a, b)).collect())
+}
+
+/// Replaces the `None`s of `values` (points outside) by the fill value, `width` numbers each,
+/// or fails naming the first.
+fn finish<const W: usize>(
+    values: Vec<Option<[f64; W]>>,
+    points: &[Point2<f64>],
+    outside: Outside,
+) -> Result<Vec<f64>, String> {
+    let mut out = Vec::with_capacity(values.len() * W);
+    for (k, v) in values.into_iter().enumerate() {
+        match (v, outside) {
+            (Some(v), _) => out.extend_from_slice(&v),
+            (None, Outside::Fill(f)) => out.extend_from_slice(&[f; W]),
+            (None, Outside::Error) => {
+                let p = points[k];
+                return Err(format!(
+                    "point {k} ({}, {}) is outside the triangulation's convex hull",
+                    p.x, p.y
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// s or one of its derivatives at the points (x[k], y[k]).
+pub fn evaluate_points(
+    spline: &PsSpline<f64>,
+    x: &[f64],
+    y: &[f64],
+    d: Derivative,
+    outside: Outside,
+) -> Result<Vec<f64>, String> {
+    let points = zip_points(x, y)?;
+    evaluate_at(spline, &points, d, outside)
+}
+
+/// s or one of its derivatives at `points`, in parallel.
+fn evaluate_at(
+    spline: &PsSpline<f64>,
+    points: &[Point2<f64>],
+    d: Derivative,
+    outside: Outside,
+) -> Result<Vec<f64>, String> {
+    let values: Vec<Option<[f64; 1]>> = match d.order() {
+        0 => spline.map_points(points, |ev, p| ev.value(p).map(|v| [v])),
+        1 => spline.map_points(points, |ev, p| {
+            ev.gradient(p)
+                .map(|(_, sx, sy)| [if d.dx == 1 { sx } else { sy }])
+        }),
+        _ => spline.map_points(points, |ev, p| ev.jet(p).map(|j| [d.pick(&j.jet)])),
+    };
+    finish(values, points, outside)
+}
+
+/// s or one of its derivatives on the grid x × y, row-major: entry i·len(y) + j is at
+/// (x[i], y[j]).
+pub fn evaluate_grid(
+    spline: &PsSpline<f64>,
+    x: &[f64],
+    y: &[f64],
+    d: Derivative,
+    outside: Outside,
+) -> Result<Vec<f64>, String> {
+    let points: Vec<Point2<f64>> = x
+        .iter()
+        .flat_map(|&a| y.iter().map(move |&b| Point2::new(a, b)))
+        .collect();
+    evaluate_at(spline, &points, d, outside)
+}
+
+/// Rows [s, s_x, s_y, s_xx, s_xy, s_yy] at the points.
+pub fn jet_rows(
+    spline: &PsSpline<f64>,
+    x: &[f64],
+    y: &[f64],
+    outside: Outside,
+) -> Result<Vec<f64>, String> {
+    let points = zip_points(x, y)?;
+    let values = spline.map_points(&points, |ev, p| {
+        ev.jet(p).map(|j| {
+            [
+                j.jet.value,
+                j.jet.dx,
+                j.jet.dy,
+                j.jet.dxx,
+                j.jet.dxy,
+                j.jet.dyy,
+            ]
+        })
+    });
+    finish(values, &points, outside)
+}
+
+/// Rows [K, H, κ1, κ2] of the graph (x, y, s(x, y)) at the points (thesis (20), (21) of the
+/// curvature seed; a graph is never singular).
+pub fn curvature_rows(
+    spline: &PsSpline<f64>,
+    x: &[f64],
+    y: &[f64],
+    outside: Outside,
+) -> Result<Vec<f64>, String> {
+    let points = zip_points(x, y)?;
+    let values = spline.map_points(&points, |ev, p| {
+        ev.jet(p).map(|j| {
+            let c = PrincipalCurvatures::from_jet(&graph_jet(p, &j.jet))
+                .map_or(PrincipalCurvatures::UNDEFINED, |(c, _)| c);
+            [c.gaussian, c.mean, c.k1, c.k2]
+        })
+    });
+    finish(values, &points, outside)
+}

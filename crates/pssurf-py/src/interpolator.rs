@@ -1,0 +1,279 @@
+//! `PsInterpolator`'s engine: the Hermite PS-spline through scattered data (thesis (2.30),
+//! (2.49)) and its evaluation at many points with the GIL released.
+
+use std::sync::Arc;
+
+use nalgebra::{Point2, Vector2};
+use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
+use pssurf::prelude::*;
+use pssurf::scattered::{
+    GradientMethod, data_basis, estimate_gradients_by, hermite_spline, interpolate,
+};
+use pssurf::triangulation::{check_coordinates, duplicate_points, morton_order};
+use pyo3::prelude::*;
+
+use crate::arrays::{float_rows, points_from, rows3, slice, triangles_from, vectors_from};
+use crate::errors::{check_budget, value_error};
+use crate::evaluate::{
+    Derivative, Outside, curvature_rows, evaluate_grid, evaluate_points, jet_rows,
+};
+
+/// The interpolant of scattered data: a functional PS-spline z = s(x, y) on a triangulation
+/// of the data points (the engine of `pssurf.PsInterpolator`).
+#[pyclass(module = "pssurf._core", frozen)]
+pub struct Interpolant {
+    spline: PsSpline<f64>,
+}
+
+impl Interpolant {
+    /// The spline.
+    pub fn spline(&self) -> &PsSpline<f64> {
+        &self.spline
+    }
+
+    /// Wraps a spline made elsewhere (a smoothing fit).
+    pub fn from_spline(spline: PsSpline<f64>) -> Self {
+        Interpolant { spline }
+    }
+}
+
+/// Bytes per data point of building an interpolant (measured for `pssurf fit`: 2.2 kB local,
+/// 7.2 kB global; rounded up as the CLI's budget does).
+fn bytes_per_point(method: GradientMethod) -> u128 {
+    match method {
+        GradientMethod::Local => 3 * 1024,
+        GradientMethod::Global => 9 * 1024,
+    }
+}
+
+/// Parses the gradient method's name.
+fn gradient_method(name: &str) -> PyResult<GradientMethod> {
+    match name {
+        "local" => Ok(GradientMethod::Local),
+        "global" => Ok(GradientMethod::Global),
+        _ => Err(value_error(format!(
+            "gradient_method must be \"local\" or \"global\", not {name:?}"
+        ))),
+    }
+}
+
+/// Parses the split rule's name.
+fn split_rule(name: &str) -> PyResult<SplitRule> {
+    match name {
+        "incenter" | "incentre" => Ok(SplitRule::Incenter),
+        "centroid" => Ok(SplitRule::Centroid),
+        _ => Err(value_error(format!(
+            "split must be \"incenter\" or \"centroid\", not {name:?}"
+        ))),
+    }
+}
+
+/// The data of a fit, converted from NumPy.
+struct Data {
+    points: Vec<Point2<f64>>,
+    values: Vec<f64>,
+    gradients: Option<Vec<Vector2<f64>>>,
+    triangles: Option<Vec<[usize; 3]>>,
+}
+
+/// Builds the spline: the library's [`interpolate`] when only values are given on the
+/// Delaunay triangulation with the incentre split; else triangulate (or take the given
+/// triangles), build the basis, and take or estimate the gradients.
+fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSpline<f64>, String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    if data.points.len() != data.values.len() {
+        return Err(format!(
+            "{} points but {} values",
+            data.points.len(),
+            data.values.len()
+        ));
+    }
+    if data.gradients.is_none() && data.triangles.is_none() && split == SplitRule::Incenter {
+        return interpolate(&data.points, &data.values, method)
+            .map(|i| i.spline)
+            .map_err(|e| err(&e));
+    }
+    if let Some(k) = data.values.iter().position(|v| !v.is_finite()) {
+        return Err(format!("the value of point {k} is not finite"));
+    }
+    check_coordinates(&data.points).map_err(|e| err(&e))?;
+    let Data {
+        mut points,
+        mut values,
+        mut gradients,
+        triangles,
+    } = data;
+    let tri = match triangles {
+        Some(t) => Triangulation::try_new(points, t).map_err(|e| err(&e))?,
+        None => {
+            if let Some((a, b)) = duplicate_points(&points) {
+                return Err(format!(
+                    "points {a} and {b} have the same (x, y); remove one"
+                ));
+            }
+            // A space-filling-curve order keeps neighbours close in memory.
+            let order = morton_order(&points);
+            points = order.iter().map(|&i| points[i as usize]).collect();
+            values = order.iter().map(|&i| values[i as usize]).collect();
+            gradients = gradients.map(|g| order.iter().map(|&i| g[i as usize]).collect());
+            Triangulation::delaunay(points).map_err(|e| err(&e))?
+        }
+    };
+    let basis = Arc::new(data_basis(tri, split).map_err(|e| err(&e))?);
+    let gradients = match gradients {
+        Some(g) => {
+            if let Some(k) = g.iter().position(|g| !(g.x.is_finite() && g.y.is_finite())) {
+                return Err(format!("the gradient of point {k} is not finite"));
+            }
+            g
+        }
+        None => {
+            estimate_gradients_by(&basis, &values, method)
+                .map_err(|e| err(&e))?
+                .0
+        }
+    };
+    hermite_spline(basis, &values, &gradients).map_err(|e| err(&e))
+}
+
+#[pymethods]
+impl Interpolant {
+    /// Fits the interpolant; see `pssurf.PsInterpolator`.
+    #[new]
+    #[pyo3(signature = (points, values, gradients, triangles, gradient_method, split))]
+    fn new(
+        py: Python<'_>,
+        points: PyReadonlyArray2<'_, f64>,
+        values: PyReadonlyArray1<'_, f64>,
+        gradients: Option<PyReadonlyArray2<'_, f64>>,
+        triangles: Option<PyReadonlyArray2<'_, i64>>,
+        gradient_method: &str,
+        split: &str,
+    ) -> PyResult<Self> {
+        let method = self::gradient_method(gradient_method)?;
+        let split = split_rule(split)?;
+        let points = points_from(&points, "points")?;
+        check_budget(
+            &format!("an interpolant of {} points", points.len()),
+            points.len() as u128 * bytes_per_point(method),
+        )?;
+        let data = Data {
+            values: slice(&values, "values")?.to_vec(),
+            gradients: gradients
+                .map(|g| vectors_from(&g, "gradients"))
+                .transpose()?,
+            triangles: triangles
+                .map(|t| triangles_from(&t, points.len()))
+                .transpose()?,
+            points,
+        };
+        let spline = py
+            .detach(|| build(data, method, split))
+            .map_err(value_error)?;
+        Ok(Interpolant { spline })
+    }
+
+    /// The values (or the partial derivative ∂^(dx+dy)/∂x^dx ∂y^dy) at the points (x[k], y[k]);
+    /// `fill` outside the triangulation, or a ValueError there when `fill` is None.
+    #[pyo3(signature = (x, y, dx, dy, fill))]
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'_, f64>,
+        y: PyReadonlyArray1<'_, f64>,
+        dx: u32,
+        dy: u32,
+        fill: Option<f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+        let d = Derivative::new(dx, dy)?;
+        let out = py
+            .detach(|| evaluate_points(&self.spline, x, y, d, Outside::from(fill)))
+            .map_err(value_error)?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// The values (or a derivative) on the grid x × y, row-major with x[i] along rows:
+    /// out[i·len(y) + j] = s(x[i], y[j]).
+    #[pyo3(signature = (x, y, dx, dy, fill))]
+    fn evaluate_grid<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'_, f64>,
+        y: PyReadonlyArray1<'_, f64>,
+        dx: u32,
+        dy: u32,
+        fill: Option<f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+        let d = Derivative::new(dx, dy)?;
+        check_budget(
+            &format!("a {} × {} grid", x.len(), y.len()),
+            (x.len() as u128) * (y.len() as u128) * 8,
+        )?;
+        let out = py
+            .detach(|| evaluate_grid(&self.spline, x, y, d, Outside::from(fill)))
+            .map_err(value_error)?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// Rows [s, s_x, s_y, s_xx, s_xy, s_yy] at the points; `fill` outside.
+    #[pyo3(signature = (x, y, fill))]
+    fn jets<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'_, f64>,
+        y: PyReadonlyArray1<'_, f64>,
+        fill: Option<f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+        let out = py
+            .detach(|| jet_rows(&self.spline, x, y, Outside::from(fill)))
+            .map_err(value_error)?;
+        float_rows(py, out, 6)
+    }
+
+    /// Rows [K, H, κ1, κ2] of the graph z = s(x, y) at the points; `fill` outside.
+    #[pyo3(signature = (x, y, fill))]
+    fn curvature<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'_, f64>,
+        y: PyReadonlyArray1<'_, f64>,
+        fill: Option<f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+        let out = py
+            .detach(|| curvature_rows(&self.spline, x, y, Outside::from(fill)))
+            .map_err(value_error)?;
+        float_rows(py, out, 4)
+    }
+
+    /// The triangulation's vertices, shape (n, 2) (in the spline's order).
+    fn vertices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let t = self.spline.basis().triangulation();
+        let flat: Vec<f64> = t.vertices().iter().flat_map(|p| [p.x, p.y]).collect();
+        float_rows(py, flat, 2)
+    }
+
+    /// The triangles as vertex indices, shape (m, 3).
+    fn triangles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        let t = self.spline.basis().triangulation();
+        let flat: Vec<i64> = t
+            .triangles()
+            .iter()
+            .flat_map(|t| t.map(|v| v as i64))
+            .collect();
+        rows3(py, flat)
+    }
+
+    /// The interpolant as a functional PS surface (for `save`, `sample`, `fairness`).
+    fn surface(&self) -> crate::surface::PySurface {
+        crate::surface::PySurface::new(pssurf::surface::Surface::from(self.spline.clone()))
+    }
+
+    /// The number of triangles.
+    fn triangle_count(&self) -> usize {
+        self.spline.basis().triangulation().triangle_count()
+    }
+}

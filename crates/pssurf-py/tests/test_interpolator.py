@@ -1,0 +1,265 @@
+"""PsInterpolator: exactness, SciPy's conventions, agreement with the CLI, errors."""
+
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import pssurf
+from conftest import quadratic
+
+
+def inner_points(rng, n, lo=0.2, hi=0.8):
+    return lo + (hi - lo) * rng.random((n, 2))
+
+
+def inradius_at(pts, triangles, q):
+    """The inradius of the (Delaunay or given) triangle containing each query point."""
+    from scipy.spatial import Delaunay
+
+    tri = Delaunay(pts)
+    t = tri.simplices if triangles is None else np.asarray(triangles)
+    if triangles is None:
+        which = tri.find_simplex(q)
+    else:
+        which = Delaunay(pts).find_simplex(q)
+        assert np.array_equal(t, tri.simplices)
+    a, b, c = (pts[t[:, k]] for k in range(3))
+    u, v = b - a, c - a
+    area = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+    perimeter = sum(np.linalg.norm(u - v, axis=1) for u, v in ((a, b), (b, c), (c, a)))
+    r = 2 * area / perimeter
+    assert (which >= 0).all()
+    return r[which]
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {},
+        {"gradient_method": "global"},
+        {"split": "centroid"},
+        {"gradients": "exact"},
+        {"triangles": "given"},
+    ],
+    ids=["local", "global", "centroid", "given-gradients", "given-triangles"],
+)
+def test_quadratics_are_reproduced(rng, kwargs):
+    n = 400
+    pts = rng.random((n, 2))
+    if kwargs.get("split") == "centroid":
+        # The centroid split is valid on a regular grid (not on every Delaunay
+        # triangulation of random points: that case must raise, below).
+        g = np.stack(np.meshgrid(np.linspace(0, 1, 20), np.linspace(0, 1, 20)), -1)
+        pts = g.reshape(-1, 2)
+    z, zx, zy, zxx, zxy, zyy = quadratic(pts[:, 0], pts[:, 1])
+    kwargs = dict(kwargs)
+    if kwargs.get("gradients") == "exact":
+        kwargs["gradients"] = np.stack([zx, zy], axis=1)
+    if kwargs.get("triangles") == "given":
+        from scipy.spatial import Delaunay
+
+        kwargs["triangles"] = Delaunay(pts).simplices
+    f = pssurf.PsInterpolator(pts, z, **kwargs)
+    q = inner_points(rng, 2000)
+    want = quadratic(q[:, 0], q[:, 1])
+    scale = np.abs(want[0]).max()
+    assert np.abs(f(q) - want[0]).max() <= 1e-10 * scale
+    # Rounding errors ε in the control values become ε/r in first and ε/r² in second
+    # derivatives on a triangle of inradius r (random points make thin triangles).
+    h_mesh = inradius_at(pts, kwargs.get("triangles"), q)
+    g = f.gradient(q)
+    assert (np.abs(g[:, 0] - want[1]) <= 1e-10 * scale / h_mesh).all()
+    assert (np.abs(g[:, 1] - want[2]) <= 1e-10 * scale / h_mesh).all()
+    h = f.hessian(q)
+    for got, exact in ((h[:, 0, 0], zxx), (h[:, 0, 1], zxy), (h[:, 1, 1], zyy)):
+        assert (np.abs(got - exact) <= 1e-10 * scale / h_mesh**2).all()
+    # Derivatives through __call__ agree with gradient()/hessian().
+    assert np.array_equal(f(q, dx=1), g[:, 0])
+    assert np.array_equal(f(q[:, 0], q[:, 1], dy=1), g[:, 1])
+    assert (np.abs(f(q, dx=1, dy=1) - zxy) <= 1e-10 * scale / h_mesh**2).all()
+    assert np.all(f(q, dx=2, dy=1) == 0.0)
+
+
+def test_centroid_split_is_refused_where_invalid(rng):
+    pts = rng.random((400, 2))
+    with pytest.raises(ValueError, match="incentres"):
+        pssurf.PsInterpolator(pts, pts[:, 0], split="centroid")
+
+
+def test_curvature_of_a_paraboloid(rng):
+    pts = rng.random((300, 2))
+    z = pts[:, 0] ** 2 + pts[:, 1] ** 2
+    grads = 2 * pts
+    f = pssurf.PsInterpolator(pts, z, gradients=grads)
+    q = inner_points(rng, 500)
+    c = f.curvature(q[:, 0], q[:, 1])
+    r2 = (q**2).sum(axis=1)
+    # z = x² + y²: K = 4 / (1 + 4r²)², H = (2 + 4r²) / (1 + 4r²)^(3/2) (upward normal).
+    assert np.allclose(c["K"], 4 / (1 + 4 * r2) ** 2, rtol=1e-10, atol=0)
+    assert np.allclose(np.abs(c["H"]), (2 + 4 * r2) / (1 + 4 * r2) ** 1.5, rtol=1e-10, atol=0)
+    assert np.all(c["k1"] >= c["k2"])
+    assert np.allclose(c["k1"] * c["k2"], c["K"], rtol=1e-10, atol=0)
+
+
+def test_shapes_follow_scipy(rng):
+    from scipy.interpolate import CloughTocher2DInterpolator
+
+    pts = rng.random((200, 2))
+    z = np.sin(3 * pts[:, 0]) + pts[:, 1]
+    f = pssurf.PsInterpolator(pts, z)
+    ct = CloughTocher2DInterpolator(pts, z)
+    cases = [
+        ((0.5, 0.5), {}),
+        (([0.3, 0.4], [0.5, 0.6]), {}),
+        ((np.full((3, 4), 0.5), np.full((3, 4), 0.4)), {}),
+        ((np.full((3, 1), 0.5), np.full((1, 5), 0.4)), {}),
+        ((np.full((2, 3, 2), 0.45),), {}),
+        ((np.array([[0.5, 0.5]]),), {}),
+    ]
+    for args, kw in cases:
+        assert f(*args, **kw).shape == ct(*args, **kw).shape, args
+    # grid=True: rows along x, columns along y, as SciPy's bivariate splines.
+    x = np.linspace(0.3, 0.7, 7)
+    y = np.linspace(0.35, 0.65, 5)
+    g = f(x, y, grid=True)
+    assert g.shape == (7, 5)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    assert np.array_equal(g, f(X, Y))
+    assert np.array_equal(f(x, y, dx=1, grid=True), f(X, Y, dx=1))
+
+
+def test_outside_the_hull_is_nan_like_scipy(rng):
+    from scipy.interpolate import CloughTocher2DInterpolator
+
+    pts = rng.random((300, 2))
+    z = pts[:, 0] * pts[:, 1]
+    f = pssurf.PsInterpolator(pts, z)
+    ct = CloughTocher2DInterpolator(pts, z)
+    q = rng.uniform(-0.5, 1.5, (5000, 2))
+    ours, theirs = np.isnan(f(q)), np.isnan(ct(q))
+    # Both decide by the same hull; a point within rounding of the hull may differ.
+    assert (ours != theirs).sum() <= 2
+    assert ours.sum() > 1000
+    assert np.isnan(f(np.nan, 0.5))
+    g = pssurf.PsInterpolator(pts, z, fill_value=-7.0)
+    assert g(5.0, 5.0) == -7.0
+    h = pssurf.PsInterpolator(pts, z, extrapolate="error")
+    with pytest.raises(ValueError, match="outside"):
+        h(5.0, 5.0)
+
+
+def test_agrees_with_the_cli(rng, cli, tmp_path):
+    pts = rng.random((500, 2))
+    z = np.exp(-pts[:, 0]) * np.cos(4 * pts[:, 1])
+    data = tmp_path / "data.csv"
+    np.savetxt(data, np.c_[pts, z], delimiter=",", header="x,y,z", comments="", fmt="%.17g")
+    q = inner_points(rng, 300)
+    at = tmp_path / "at.csv"
+    np.savetxt(at, q, delimiter=",", header="u,v", comments="", fmt="%.17g")
+    for method in ("local", "global"):
+        surf = tmp_path / f"{method}.json"
+        out = tmp_path / f"{method}.csv"
+        subprocess.run([cli, "fit", str(data), "-o", str(surf), "--gradients", method],
+                       check=True, capture_output=True)
+        subprocess.run([cli, "eval", str(surf), "--at", str(at), "-o", str(out)],
+                       check=True, capture_output=True)
+        table = np.genfromtxt(out, delimiter=",", names=True)
+        f = pssurf.PsInterpolator(pts, z, gradient_method=method)
+        assert np.abs(f(q) - table["z"]).max() <= 1e-12
+        # The CLI's file loads in Python and evaluates identically.
+        s = pssurf.load(surf)
+        assert s.kind == "functional"
+        assert np.abs(s.evaluate(q)[:, 2] - table["z"]).max() == 0.0
+
+
+def test_inputs_are_converted(rng):
+    pts = rng.random((300, 2))
+    z = pts[:, 0] - pts[:, 1] ** 2
+    f = pssurf.PsInterpolator(pts, z)
+    q = inner_points(rng, 100)
+    want = f(q)
+    ro = q.copy()
+    ro.setflags(write=False)
+    assert np.array_equal(f(ro), want)
+    assert np.array_equal(f(np.asfortranarray(q)), want)
+    wide = np.zeros((100, 4))
+    wide[:, ::2] = q
+    assert np.array_equal(f(wide[:, ::2]), want)
+    assert np.array_equal(f(q[:, 0].tolist(), q[:, 1].tolist()), want)
+    f32 = pssurf.PsInterpolator(pts.astype(np.float32), z.astype(np.float32))
+    assert np.isfinite(f32(q)).all()
+    # Points as a tuple (x, y), as SciPy accepts.
+    same = pssurf.PsInterpolator((pts[:, 0], pts[:, 1]), z)
+    assert np.array_equal(same(q), want)
+
+
+@pytest.mark.parametrize(
+    "points, values, kwargs, message",
+    [
+        (np.zeros((5, 3)), np.zeros(5), {}, "shape"),
+        (np.random.default_rng(1).random((5, 2)), np.zeros(4), {}, "5 points but 4 values"),
+        (np.array([[0, 0], [1, 0], [0, 1], [1, 1.0]]), np.array([0, 1, np.nan, 2]), {}, "not finite"),
+        (np.array([[0, 0], [1, 0], [0, 1], [0, 1.0]]), np.zeros(4), {}, "same"),
+        (np.array([[0, 0], [1, 1], [2, 2], [3, 3.0]]), np.zeros(4), {}, "collinear"),
+        (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"gradient_method": "magic"}, "gradient_method"),
+        (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"split": "middle"}, "split"),
+        (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"triangles": [[0, 1, 3]]}, "refers to point 3"),
+        (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"triangles": [[0.0, 1, 2]]}, "integer"),
+        (np.array([[0, 0], [1, 0], [0, 1e308]]), np.zeros(3), {}, "range"),
+        (np.array([[0, 0], [1, 0], [0, np.inf]]), np.zeros(3), {}, "finite"),
+        (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros((3, 2)), {}, "values must have shape"),
+        (np.array([[0, 0], [1, 0], [0, 1.0]]), ["a", "b", "c"], {}, "real numbers"),
+    ],
+)
+def test_bad_input_raises_value_error(points, values, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        pssurf.PsInterpolator(points, values, **kwargs)
+
+
+def test_bad_queries_raise_value_error(rng):
+    pts = rng.random((50, 2))
+    f = pssurf.PsInterpolator(pts, pts[:, 0])
+    with pytest.raises(ValueError, match="shape"):
+        f(np.zeros((4, 3)))
+    with pytest.raises(ValueError):
+        f(np.zeros(3), np.zeros(4))
+    with pytest.raises(ValueError, match="dx"):
+        f(0.5, 0.5, dx=-1)
+    with pytest.raises(ValueError, match="grid"):
+        f(np.zeros((3, 2)), grid=True)
+
+
+def test_the_gil_is_released(rng):
+    pts = rng.random((2000, 2))
+    f = pssurf.PsInterpolator(pts, pts[:, 0] * pts[:, 1])
+    q = rng.random((3_000_000, 2))
+    count = [0]
+    running = threading.Event()
+    stop = threading.Event()
+
+    def spin():
+        running.set()
+        while not stop.is_set():
+            count[0] += 1
+
+    t = threading.Thread(target=spin)
+    t.start()
+    running.wait()
+    before = count[0]
+    f(q)
+    during = count[0] - before
+    stop.set()
+    t.join()
+    # With the GIL held for the whole call, the other thread could not run at all.
+    assert during > 1000
+
+
+def test_vertices_and_triangles(rng):
+    pts = rng.random((100, 2))
+    f = pssurf.PsInterpolator(pts, pts[:, 0])
+    v, t = f.vertices, f.triangles
+    assert v.shape == (100, 2) and t.shape[1] == 3
+    assert sorted(map(tuple, v)) == sorted(map(tuple, pts))
+    assert t.min() == 0 and t.max() == 99
