@@ -3,7 +3,7 @@
 use nalgebra::Point2;
 use pssurf::bezier::Jet;
 use pssurf::interrogate::PrincipalCurvatures;
-use pssurf::ps::PsSpline;
+use pssurf::ps::{Evaluator, PsSpline};
 use pssurf::surface::graph_jet;
 use pyo3::PyResult;
 
@@ -106,6 +106,23 @@ pub fn evaluate_points(
     evaluate_at(spline, &points, d, outside)
 }
 
+/// Below this many points the queries are evaluated in the caller's order (sorting them
+/// along the Morton curve does not pay).
+const SORT_QUERIES: usize = 4096;
+
+/// `f` at every point: in Morton order for many points, else in the given order.
+fn map<T: Send + Copy + Default>(
+    spline: &PsSpline<f64>,
+    points: &[Point2<f64>],
+    f: impl Fn(&mut Evaluator<'_, f64>, Point2<f64>) -> T + Sync,
+) -> Vec<T> {
+    if points.len() >= SORT_QUERIES {
+        spline.map_scattered(points, f)
+    } else {
+        spline.map_points(points, f)
+    }
+}
+
 /// s or one of its derivatives at `points`, in parallel.
 fn evaluate_at(
     spline: &PsSpline<f64>,
@@ -114,12 +131,12 @@ fn evaluate_at(
     outside: Outside,
 ) -> Result<Vec<f64>, String> {
     let values: Vec<Option<[f64; 1]>> = match d.order() {
-        0 => spline.map_points(points, |ev, p| ev.value(p).map(|v| [v])),
-        1 => spline.map_points(points, |ev, p| {
+        0 => map(spline, points, |ev, p| ev.value(p).map(|v| [v])),
+        1 => map(spline, points, |ev, p| {
             ev.gradient(p)
                 .map(|(_, sx, sy)| [if d.dx == 1 { sx } else { sy }])
         }),
-        _ => spline.map_points(points, |ev, p| ev.jet(p).map(|j| [d.pick(&j.jet)])),
+        _ => map(spline, points, |ev, p| ev.jet(p).map(|j| [d.pick(&j.jet)])),
     };
     finish(values, points, outside)
 }
@@ -133,11 +150,54 @@ pub fn evaluate_grid(
     d: Derivative,
     outside: Outside,
 ) -> Result<Vec<f64>, String> {
+    if d.order() == 0 {
+        // The fast path: runs inside one piece along each grid line.
+        let fill = match outside {
+            Outside::Fill(f) => f,
+            Outside::Error => f64::NAN,
+        };
+        let values = spline.values_on_grid(x, y, fill);
+        if outside == Outside::Error {
+            check_inside(spline, x, y, &values)?;
+        }
+        return Ok(values);
+    }
+    // Grid lines are coherent paths: evaluate in the grid's own order.
     let points: Vec<Point2<f64>> = x
         .iter()
         .flat_map(|&a| y.iter().map(move |&b| Point2::new(a, b)))
         .collect();
-    evaluate_at(spline, &points, d, outside)
+    let values: Vec<Option<[f64; 1]>> = match d.order() {
+        1 => spline.map_points(&points, |ev, p| {
+            ev.gradient(p)
+                .map(|(_, sx, sy)| [if d.dx == 1 { sx } else { sy }])
+        }),
+        _ => spline.map_points(&points, |ev, p| ev.jet(p).map(|j| [d.pick(&j.jet)])),
+    };
+    finish(values, &points, outside)
+}
+
+/// With `extrapolate="error"`: fails at the first grid point outside (a NaN value is either
+/// outside or a NaN coordinate; both are located again to tell).
+fn check_inside(
+    spline: &PsSpline<f64>,
+    x: &[f64],
+    y: &[f64],
+    values: &[f64],
+) -> Result<(), String> {
+    let mut ev = spline.evaluator();
+    for (k, v) in values.iter().enumerate() {
+        if v.is_nan() {
+            let p = Point2::new(x[k / y.len()], y[k % y.len()]);
+            if ev.locate(p).is_none() {
+                return Err(format!(
+                    "grid point ({}, {}) is outside the triangulation's convex hull",
+                    p.x, p.y
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Rows [s, s_x, s_y, s_xx, s_xy, s_yy] at the points.
@@ -148,7 +208,7 @@ pub fn jet_rows(
     outside: Outside,
 ) -> Result<Vec<f64>, String> {
     let points = zip_points(x, y)?;
-    let values = spline.map_points(&points, |ev, p| {
+    let values = map(spline, &points, |ev, p| {
         ev.jet(p).map(|j| {
             [
                 j.jet.value,
@@ -172,7 +232,7 @@ pub fn curvature_rows(
     outside: Outside,
 ) -> Result<Vec<f64>, String> {
     let points = zip_points(x, y)?;
-    let values = spline.map_points(&points, |ev, p| {
+    let values = map(spline, &points, |ev, p| {
         ev.jet(p).map(|j| {
             let c = PrincipalCurvatures::from_jet(&graph_jet(p, &j.jet))
                 .map_or(PrincipalCurvatures::UNDEFINED, |(c, _)| c);

@@ -68,5 +68,50 @@ fn eval(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, eval);
+/// The fast paths for many points (issue 19): grid runs, and scattered queries sorted along
+/// the Morton curve, on 1 core and on all cores:
+/// `cargo bench -p pssurf --bench eval -- fast`.
+fn fast_paths(c: &mut Criterion) {
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a thread pool");
+    let mut g = c.benchmark_group("fast_grid_10k_vertices_1000x1000");
+    g.sample_size(20);
+    let s = common::franke_spline(10_000);
+    let axis: Vec<f64> = (0..1000).map(|k| k as f64 / 999.0).collect();
+    g.throughput(Throughput::Elements(1_000_000));
+    g.bench_function("values_on_grid/all cores", |b| {
+        b.iter(|| black_box(s.values_on_grid(&axis, &axis, f64::NAN)))
+    });
+    g.bench_function("values_on_grid/1 core", |b| {
+        b.iter(|| one.install(|| black_box(s.values_on_grid(&axis, &axis, f64::NAN))))
+    });
+    g.finish();
+
+    let mut g = c.benchmark_group("fast_scattered_1M_queries");
+    g.sample_size(10);
+    let q = common::random_points(1_000_000, 98);
+    g.throughput(Throughput::Elements(q.len() as u64));
+    for n in [10_000usize, 1_000_000] {
+        let s = common::franke_spline(n);
+        s.basis().triangulation().prepare_locator();
+        g.bench_with_input(BenchmarkId::new("map_scattered/1 core", n), &q, |b, q| {
+            b.iter(|| one.install(|| black_box(s.map_scattered(q, |ev, p| ev.value(p)))))
+        });
+        g.bench_with_input(
+            BenchmarkId::new("map_scattered/all cores", n),
+            &q,
+            |b, q| b.iter(|| black_box(s.map_scattered(q, |ev, p| ev.value(p)))),
+        );
+        g.bench_with_input(
+            BenchmarkId::new("map_points (unsorted)/all cores", n),
+            &q,
+            |b, q| b.iter(|| black_box(s.map_points(q, |ev, p| ev.value(p)))),
+        );
+    }
+    g.finish();
+}
+
+criterion_group!(benches, eval, fast_paths);
 criterion_main!(benches);

@@ -11,6 +11,7 @@ pub mod net;
 pub mod nurps;
 pub mod ps_triangles;
 pub mod quadrics;
+mod raster;
 pub mod refinement;
 pub mod spline;
 

@@ -23,6 +23,7 @@ pub use locate::{Cursor, INSIDE_TOLERANCE, Location};
 use std::sync::OnceLock;
 
 use nalgebra::Point2;
+use rayon::prelude::*;
 
 use crate::geometry::Triangle2;
 
@@ -263,8 +264,11 @@ pub fn duplicate_points(points: &[Point2<f64>]) -> Option<(usize, usize)> {
         .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
 }
 
+/// Above this many points [`morton_order`] sorts in parallel.
+const PARALLEL_SORT: usize = 1 << 16;
+
 /// Indices of `points` sorted by their Morton (Z-order) code on a 2^16 × 2^16 grid over
-/// their bounding box.
+/// their bounding box (ties in the order given).
 pub fn morton_order(points: &[Point2<f64>]) -> Vec<u32> {
     let (mut lo, mut hi) = (
         Point2::new(f64::INFINITY, f64::INFINITY),
@@ -286,17 +290,23 @@ pub fn morton_order(points: &[Point2<f64>]) -> Vec<u32> {
         x = (x | (x << 1)) & 0x5555_5555;
         x
     };
-    let mut keyed: Vec<(u64, u32)> = points
-        .iter()
+    // (Casts saturate: NaN and infinite coordinates get some code, never a panic.) The
+    // index in the low bits keeps ties in the given order.
+    let mut keyed: Vec<u64> = points
+        .par_iter()
         .enumerate()
         .map(|(i, p)| {
             let x = ((p.x - lo.x) * scale[0]) as u32;
             let y = ((p.y - lo.y) * scale[1]) as u32;
-            (spread(x) | (spread(y) << 1), i as u32)
+            ((spread(x) | (spread(y) << 1)) << 32) | i as u64
         })
         .collect();
-    keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    if keyed.len() > PARALLEL_SORT {
+        keyed.par_sort_unstable();
+    } else {
+        keyed.sort_unstable();
+    }
+    keyed.into_iter().map(|k| k as u32).collect()
 }
 
 #[cfg(test)]

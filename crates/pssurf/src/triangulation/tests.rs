@@ -349,3 +349,51 @@ fn boundary_contacts_are_decided_exactly() {
     off[4] = p(3.0, 1.0_f64.next_up());
     Triangulation::try_new(off, vec![[0, 1, 2], [3, 4, 5]]).unwrap();
 }
+
+/// The counting-sort Morton order sorts by the interleaved 16-bit grid codes (computed here
+/// bit by bit), keeps ties in the given order, and never panics on NaN or infinite input.
+#[test]
+fn morton_order_sorts_by_interleaved_codes() {
+    let mut r = crate::test_util::rng(77);
+    let mut pts: Vec<Point2<f64>> = (0..50_000)
+        .map(|_| Point2::new(uniform(&mut r, -3.0, 5.0), uniform(&mut r, 1.0, 2.0)))
+        .collect();
+    pts[20] = pts[10];
+    let (lo, hi) = pts.iter().fold(
+        (
+            Point2::new(f64::MAX, f64::MAX),
+            Point2::new(f64::MIN, f64::MIN),
+        ),
+        |(a, b), p| {
+            (
+                Point2::new(a.x.min(p.x), a.y.min(p.y)),
+                Point2::new(b.x.max(p.x), b.y.max(p.y)),
+            )
+        },
+    );
+    let code = |i: u32| {
+        let p = pts[i as usize];
+        let x = ((p.x - lo.x) * (65535.0 / (hi.x - lo.x))) as u64;
+        let y = ((p.y - lo.y) * (65535.0 / (hi.y - lo.y))) as u64;
+        (0..16).fold(0u64, |c, b| {
+            c | ((x >> b) & 1) << (2 * b) | ((y >> b) & 1) << (2 * b + 1)
+        })
+    };
+    let got = morton_order(&pts);
+    assert!(
+        got.windows(2)
+            .all(|w| code(w[0]) < code(w[1]) || (code(w[0]) == code(w[1]) && w[0] < w[1]))
+    );
+    let mut sorted = got.clone();
+    sorted.sort_unstable();
+    assert!(
+        sorted.iter().enumerate().all(|(k, &i)| k as u32 == i),
+        "a permutation"
+    );
+    let odd = [
+        Point2::new(f64::NAN, 1.0),
+        Point2::new(f64::INFINITY, 0.0),
+        Point2::new(0.0, 0.0),
+    ];
+    assert_eq!(morton_order(&odd).len(), 3);
+}
