@@ -78,9 +78,9 @@ fn io_cause(e: &anyhow::Error) -> String {
 
 /// Writes a surface file (durably: it is the user's source of truth), or to standard output.
 pub fn save_surface(surface: &pssurf::surface::Surface, path: &Path) -> Result<()> {
-    let text = pssurf::io::to_json_string(surface);
+    let encoding = pssurf::io::SurfaceEncoding::for_path(path);
     write_output(path, Durability::Durable, |w| {
-        Ok(w.write_all(text.as_bytes())?)
+        Ok(pssurf::io::write_surface(surface, encoding, w)?)
     })
 }
 

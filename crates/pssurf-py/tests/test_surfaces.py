@@ -121,3 +121,21 @@ def test_smoothing_beats_interpolation_on_noisy_data(rng):
     assert r["smooth"] == 1e-6 and np.sqrt(np.mean((g(q) - truth(q)) ** 2)) < sigma
     with pytest.raises(ValueError, match="smooth"):
         pssurf.fit_smooth(pts, z, smooth=-1.0)
+
+
+def test_binary_and_json_files_agree(rng, tmp_path):
+    pts = rng.random((500, 2))
+    f = pssurf.PsInterpolator(pts, np.cos(3 * pts[:, 0]) * pts[:, 1])
+    u = pssurf.ups(6, 4, height="x*y - y^2", kind="functional")
+    for name, s in (("fit", f.surface()), ("ups", u)):
+        s.save(tmp_path / f"{name}.json")
+        s.save(tmp_path / f"{name}.psb")
+        a, b = pssurf.load(tmp_path / f"{name}.json"), pssurf.load(tmp_path / f"{name}.psb")
+        (lo, hi) = a.bounds
+        uv = np.array(lo) + (np.array(hi) - np.array(lo)) * rng.random((400, 2))
+        assert np.array_equal(a.evaluate(uv), b.evaluate(uv), equal_nan=True)
+        assert (tmp_path / f"{name}.psb").read_bytes()[:7] == b"PSSURFB"
+        data = (tmp_path / f"{name}.psb").read_bytes()
+        (tmp_path / "cut.psb").write_bytes(data[: len(data) // 2])
+        with pytest.raises(ValueError, match="truncated"):
+            pssurf.load(tmp_path / "cut.psb")

@@ -16,6 +16,8 @@ use crate::surface::{Surface, UpsSurface};
 use crate::triangulation::{Triangulation, TriangulationError};
 use crate::ups::{Lattice, LatticePolygon, Ups, UpsGrid, fixed_ps_triangle};
 
+mod binary;
+
 /// The format version this build writes and reads.
 pub const FORMAT_VERSION: u32 = 1;
 
@@ -292,13 +294,15 @@ fn check_fields(file: &FileV1) -> Result<(), FormatError> {
         Kind::Nurbs => (&["nurbs"], &[]),
     };
     for (field, present) in file.present_fields() {
+        // The general form of a uniform surface follows from its `uniform` section.
+        let implied = field == "domain" && file.uniform.is_some();
         if present && !required.contains(&field) && !allowed.contains(&field) {
             return Err(invalid(
                 field,
                 format!("a {} surface has no field `{field}`", file.kind.name()),
             ));
         }
-        if !present && required.contains(&field) {
+        if !present && required.contains(&field) && !implied {
             return Err(invalid(
                 field,
                 format!("missing field `{field}` for a {} surface", file.kind.name()),
@@ -505,10 +509,13 @@ fn read_uniform(u: &UniformSection, file: &FileV1) -> Result<UpsGrid, FormatErro
         origin: Point2::new(u.origin[0], u.origin[1]),
     };
     let grid = UpsGrid::new(lattice, polygon).map_err(|e| invalid("uniform", e))?;
-    let domain = file.domain.as_ref().expect("checked by check_fields");
-    check_uniform_vertices(&grid, domain)?;
-    check_uniform_triangles(&grid, domain)?;
-    check_uniform_split(domain)?;
+    // A uniform file may leave out its general form (binary files do): the lattice and the
+    // polygon determine it. When it is given, it must be exactly that.
+    if let Some(domain) = file.domain.as_ref() {
+        check_uniform_vertices(&grid, domain)?;
+        check_uniform_triangles(&grid, domain)?;
+        check_uniform_split(domain)?;
+    }
     if let Some(list) = &file.ps_triangles {
         check_uniform_ps_triangles(&grid, list)?;
     }
@@ -762,7 +769,14 @@ fn ps_error(e: PsError) -> FormatError {
 /// file means the same surface whatever version of the optimiser reads it; a uniform
 /// surface also gets its `uniform` section.
 pub fn to_json_string(surface: &Surface) -> String {
-    let file = match surface {
+    let mut text = serde_json::to_string(&document(surface)).expect("finite numbers serialise");
+    text.push('\n');
+    text
+}
+
+/// The document of a surface, as both encodings write it.
+fn document(surface: &Surface) -> FileV1 {
+    match surface {
         Surface::Uniform(u) => uniform_file(u.ups()),
         Surface::Bezier(b) => bezier_file(b.domain(), b.degree(), b.points(), None),
         Surface::RationalBezier(b) => {
@@ -770,10 +784,7 @@ pub fn to_json_string(surface: &Surface) -> String {
         }
         Surface::Nurbs(n) => nurbs_file(n),
         general => general_file(general),
-    };
-    let mut text = serde_json::to_string(&file).expect("finite numbers serialise");
-    text.push('\n');
-    text
+    }
 }
 
 fn points3(c: &[[Vector3<f64>; 3]]) -> Vec<[[f64; 3]; 3]> {
@@ -938,17 +949,50 @@ pub fn load(path: &Path) -> Result<Surface, FileError> {
 /// endless stream such as `/dev/zero`) is refused after reading that much, so that memory
 /// stays bounded whatever `path` is.
 pub fn load_limited(path: &Path, max_bytes: u64) -> Result<Surface, FileError> {
-    let text = read_text_limited(path, max_bytes)?;
-    from_json_str(&text).map_err(|cause| FileError::Format {
-        path: path.to_path_buf(),
-        cause,
-    })
+    let contents = match read_limited(path, max_bytes)? {
+        Contents::Binary(file) => file,
+        Contents::Text(text) => {
+            return from_json_str(&text).map_err(|cause| FileError::Format {
+                path: path.to_path_buf(),
+                cause,
+            });
+        }
+    };
+    binary::read(contents, path, max_bytes)
 }
 
-/// The text of a file of at most `max_bytes` bytes (a longer one, or an endless stream, is
-/// refused after reading that much), which must be UTF-8.
-pub(crate) fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, FileError> {
+/// A surface file opened and recognised by its first bytes.
+enum Contents {
+    /// A binary file (its magic number read; positioned after it).
+    Binary(std::io::BufReader<std::fs::File>),
+    /// The whole text of a JSON file.
+    Text(String),
+}
+
+/// Opens `path`; a binary surface file is left open after its magic number, anything else is
+/// read as text of at most `max_bytes` bytes.
+fn read_limited(path: &Path, max_bytes: u64) -> Result<Contents, FileError> {
     use std::io::Read;
+    let io = |cause| FileError::Io {
+        path: path.to_path_buf(),
+        cause,
+    };
+    let file = open_file(path)?;
+    let mut reader = std::io::BufReader::new(file);
+    let mut head = Vec::with_capacity(binary::MAGIC.len());
+    (&mut reader)
+        .take(binary::MAGIC.len() as u64)
+        .read_to_end(&mut head)
+        .map_err(io)?;
+    if head == binary::MAGIC {
+        return Ok(Contents::Binary(reader));
+    }
+    let text = text_limited(path, head.as_slice().chain(reader), max_bytes)?;
+    Ok(Contents::Text(text))
+}
+
+/// Opens a file for reading, refusing directories with a clear message.
+fn open_file(path: &Path) -> Result<std::fs::File, FileError> {
     let io = |cause| FileError::Io {
         path: path.to_path_buf(),
         cause,
@@ -960,8 +1004,29 @@ pub(crate) fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, F
             "is a directory",
         )));
     }
+    Ok(file)
+}
+
+/// The text of a file of at most `max_bytes` bytes (a longer one, or an endless stream, is
+/// refused after reading that much), which must be UTF-8.
+pub(crate) fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, FileError> {
+    text_limited(path, open_file(path)?, max_bytes)
+}
+
+/// The UTF-8 text of `reader` (the contents of `path`), at most `max_bytes` bytes.
+fn text_limited(
+    path: &Path,
+    reader: impl std::io::Read,
+    max_bytes: u64,
+) -> Result<String, FileError> {
+    use std::io::Read;
+    let io = |cause| FileError::Io {
+        path: path.to_path_buf(),
+        cause,
+    };
     let mut bytes = Vec::new();
-    file.take(max_bytes.saturating_add(1))
+    reader
+        .take(max_bytes.saturating_add(1))
         .read_to_end(&mut bytes)
         .map_err(io)?;
     if bytes.len() as u64 > max_bytes {
@@ -978,13 +1043,50 @@ pub(crate) fn read_text_limited(path: &Path, max_bytes: u64) -> Result<String, F
     })
 }
 
-/// Writes a surface file atomically and durably (a failure leaves any previous file intact).
-pub fn save(surface: &Surface, path: &Path) -> Result<(), FileError> {
-    let text = to_json_string(surface);
-    super::atomic_write_bytes(path, super::Durability::Durable, text.as_bytes()).map_err(|cause| {
-        FileError::Io {
-            path: path.to_path_buf(),
-            cause,
+/// The two encodings of a surface file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SurfaceEncoding {
+    /// The JSON document (`.json` and any other extension).
+    Json,
+    /// The same document with its large arrays as little-endian binary chunks (`.psb`;
+    /// docs/format.md, "Binary files").
+    Binary,
+}
+
+impl SurfaceEncoding {
+    /// The encoding a path's extension asks for: `.psb` is binary, anything else JSON.
+    pub fn for_path(path: &Path) -> Self {
+        match path.extension() {
+            Some(e) if e.eq_ignore_ascii_case(BINARY_EXTENSION) => SurfaceEncoding::Binary,
+            _ => SurfaceEncoding::Json,
         }
+    }
+}
+
+/// The extension of binary surface files.
+pub const BINARY_EXTENSION: &str = "psb";
+
+/// Writes `surface` in `encoding` to `w`.
+pub fn write_surface(
+    surface: &Surface,
+    encoding: SurfaceEncoding,
+    w: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    match encoding {
+        SurfaceEncoding::Json => w.write_all(to_json_string(surface).as_bytes()),
+        SurfaceEncoding::Binary => binary::write(document(surface), w),
+    }
+}
+
+/// Writes a surface file atomically and durably (a failure leaves any previous file intact),
+/// in the encoding its extension asks for ([`SurfaceEncoding::for_path`]).
+pub fn save(surface: &Surface, path: &Path) -> Result<(), FileError> {
+    let encoding = SurfaceEncoding::for_path(path);
+    super::atomic_write(path, super::Durability::Durable, |w| {
+        write_surface(surface, encoding, w)
+    })
+    .map_err(|cause| FileError::Io {
+        path: path.to_path_buf(),
+        cause,
     })
 }

@@ -17,8 +17,8 @@ pub use curves::{
     write_curves_obj,
 };
 pub use format::{
-    CURVE_KIND, FORMAT_VERSION, FileError, FormatError, from_json_str, load, load_limited, save,
-    to_json_string,
+    BINARY_EXTENSION, CURVE_KIND, FORMAT_VERSION, FileError, FormatError, SurfaceEncoding,
+    from_json_str, load, load_limited, save, to_json_string, write_surface,
 };
 pub use hole_spec::{HOLE_KIND, hole_from_json};
 pub use scene::{
