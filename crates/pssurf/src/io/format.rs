@@ -265,7 +265,7 @@ pub(crate) fn check_header(text: &str) -> Result<Header, FormatError> {
 /// The one builder: check which fields the kind allows, read the structure (a general basis,
 /// a uniform grid, or a Bézier triangle), read and check the control data against it, and
 /// assemble the surface.
-fn build(file: FileV1) -> Result<Surface, FormatError> {
+fn build(mut file: FileV1) -> Result<Surface, FormatError> {
     check_fields(&file)?;
     match file.kind {
         Kind::Bezier | Kind::RationalBezier => build_bezier(&file),
@@ -275,7 +275,7 @@ fn build(file: FileV1) -> Result<Surface, FormatError> {
                 Some(u) => Structure::Uniform(read_uniform(u, &file)?),
                 None => Structure::General(read_basis(&file)?),
             };
-            let control = read_ps_control(&file, structure.vertex_count())?;
+            let control = read_ps_control(&mut file, structure.vertex_count())?;
             structure.surface(control)
         }
     }
@@ -365,7 +365,8 @@ impl Structure {
 
 /// Reads `control`, `control_points` and `weights` as the kind requires (presence was
 /// checked before), one triple per vertex, all finite, weights positive.
-fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
+/// The arrays are moved out of `file` (no copy of what may be most of the memory).
+fn read_ps_control(file: &mut FileV1, n: usize) -> Result<PsControl, FormatError> {
     let finite = |field: &str, i: usize, j: usize, ok: bool| {
         if ok {
             Ok(())
@@ -377,19 +378,16 @@ fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
         }
     };
     if file.kind == Kind::Functional {
-        let c = file.control.as_ref().expect("checked by check_fields");
+        let c = file.control.take().expect("checked by check_fields");
         check_count("control", c.len(), n)?;
         for (i, t) in c.iter().enumerate() {
             for j in 0..3 {
                 finite("control", i, j, crate::limits::value_ok(t[j]))?;
             }
         }
-        return Ok(PsControl::Heights(c.clone()));
+        return Ok(PsControl::Heights(c));
     }
-    let c = file
-        .control_points
-        .as_ref()
-        .expect("checked by check_fields");
+    let c = file.control_points.take().expect("checked by check_fields");
     check_count("control_points", c.len(), n)?;
     for (i, t) in c.iter().enumerate() {
         for j in 0..3 {
@@ -401,14 +399,15 @@ fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
             )?;
         }
     }
+    // (Same size and alignment: the collect reuses the allocation.)
     let points: Vec<[Vector3<f64>; 3]> = c
-        .iter()
+        .into_iter()
         .map(|t| t.map(|p| Vector3::new(p[0], p[1], p[2])))
         .collect();
     if file.kind == Kind::Parametric {
         return Ok(PsControl::Points(points));
     }
-    let w = file.weights.as_ref().expect("checked by check_fields");
+    let w = file.weights.take().expect("checked by check_fields");
     check_count("weights", w.len(), n)?;
     for (i, t) in w.iter().enumerate() {
         for j in 0..3 {
@@ -424,7 +423,7 @@ fn read_ps_control(file: &FileV1, n: usize) -> Result<PsControl, FormatError> {
             }
         }
     }
-    Ok(PsControl::Weighted(points, w.clone()))
+    Ok(PsControl::Weighted(points, w))
 }
 
 /// The general PS basis of a file: triangulation, refinement, PS-triangles.
@@ -1061,6 +1060,20 @@ impl SurfaceEncoding {
             _ => SurfaceEncoding::Json,
         }
     }
+}
+
+/// True when `path` is a regular file that starts with the magic number of a binary surface
+/// file (false when it cannot be read, and for pipes and devices, which are not opened here so
+/// that their bytes are left for the reader: loading says what is wrong).
+pub fn is_binary_surface_file(path: &Path) -> bool {
+    use std::io::Read;
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
+    let mut head = Vec::with_capacity(binary::MAGIC.len());
+    std::fs::File::open(path)
+        .and_then(|f| f.take(binary::MAGIC.len() as u64).read_to_end(&mut head))
+        .is_ok_and(|_| head == binary::MAGIC)
 }
 
 /// The extension of binary surface files.

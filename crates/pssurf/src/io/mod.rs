@@ -18,7 +18,7 @@ pub use curves::{
 };
 pub use format::{
     BINARY_EXTENSION, CURVE_KIND, FORMAT_VERSION, FileError, FormatError, SurfaceEncoding,
-    from_json_str, load, load_limited, save, to_json_string, write_surface,
+    from_json_str, is_binary_surface_file, load, load_limited, save, to_json_string, write_surface,
 };
 pub use hole_spec::{HOLE_KIND, hole_from_json};
 pub use scene::{

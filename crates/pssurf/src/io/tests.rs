@@ -791,3 +791,31 @@ fn truncated_and_corrupted_binary_files_are_refused() {
         );
     }
 }
+
+/// A binary file whose header claims absurd chunk sizes is refused before anything is
+/// allocated for them (the claim is checked against the bytes left in the file).
+#[test]
+fn binary_headers_claiming_absurd_sizes_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.psb");
+    save(&sample_surfaces()[0], &path).unwrap();
+    let good = std::fs::read(&path).unwrap();
+    let len = u64::from_le_bytes(good[8..16].try_into().unwrap()) as usize;
+    let data_start = 16 + len.div_ceil(8) * 8;
+    for rows in [u64::MAX, u64::MAX / 3, 1 << 40, 1 << 20] {
+        let mut header: serde_json::Value = serde_json::from_slice(&good[16..16 + len]).unwrap();
+        header["chunks"][0]["rows"] = rows.into();
+        let text = serde_json::to_vec(&header).unwrap();
+        let mut bytes = good[..8].to_vec();
+        bytes.extend_from_slice(&(text.len() as u64).to_le_bytes());
+        bytes.extend_from_slice(&text);
+        bytes.resize(16 + text.len().div_ceil(8) * 8, 0);
+        bytes.extend_from_slice(&good[data_start..]);
+        std::fs::write(&path, &bytes).unwrap();
+        let e = load(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("domain.vertices") && (e.contains("truncated") || e.contains("absurd")),
+            "{rows}: {e}"
+        );
+    }
+}

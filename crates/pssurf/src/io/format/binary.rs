@@ -360,6 +360,11 @@ fn skip_padding(r: &mut Limited, len: u64, what: &str) -> Result<(), ReadError> 
     Ok(())
 }
 
+/// A row kept as it is.
+fn same<const W: usize>(row: [f64; W]) -> [f64; W] {
+    row
+}
+
 /// Reads `chunk`'s rows into its field of `file`, which must not hold it already.
 fn put(file: &mut FileV1, chunk: &Chunk, r: &mut Limited) -> Result<(), ReadError> {
     let field = chunk.field.as_str();
@@ -371,62 +376,65 @@ fn put(file: &mut FileV1, chunk: &Chunk, r: &mut Limited) -> Result<(), ReadErro
                 .as_mut()
                 .ok_or_else(|| invalid(field, "a chunk for a document without `domain`"))?;
             match field {
-                "domain.vertices" if d.vertices.is_empty() => d.vertices = rows(r, chunk)?,
+                "domain.vertices" if d.vertices.is_empty() => d.vertices = rows(r, chunk, same)?,
                 "domain.triangles" if d.triangles.is_empty() => {
                     d.triangles = indices(r, chunk)?;
                 }
                 "domain.split_points" if d.split_points.is_none() => {
-                    d.split_points = Some(rows(r, chunk)?);
+                    d.split_points = Some(rows(r, chunk, same)?);
                 }
                 _ => return Err(twice().into()),
             }
         }
         "ps_triangles" if file.ps_triangles.is_none() => {
-            let v: Vec<[f64; 6]> = rows(r, chunk)?;
-            file.ps_triangles = Some(
-                v.into_iter()
-                    .map(|t| [[t[0], t[1]], [t[2], t[3]], [t[4], t[5]]])
-                    .collect(),
-            );
+            file.ps_triangles = Some(rows(r, chunk, |t: [f64; 6]| {
+                [[t[0], t[1]], [t[2], t[3]], [t[4], t[5]]]
+            })?);
         }
-        "control" if file.control.is_none() => file.control = Some(rows(r, chunk)?),
+        "control" if file.control.is_none() => file.control = Some(rows(r, chunk, same)?),
         "control_points" if file.control_points.is_none() => {
-            let v: Vec<[f64; 9]> = rows(r, chunk)?;
-            file.control_points = Some(
-                v.into_iter()
-                    .map(|t| [[t[0], t[1], t[2]], [t[3], t[4], t[5]], [t[6], t[7], t[8]]])
-                    .collect(),
-            );
+            file.control_points = Some(rows(r, chunk, |t: [f64; 9]| {
+                [[t[0], t[1], t[2]], [t[3], t[4], t[5]], [t[6], t[7], t[8]]]
+            })?);
         }
-        "weights" if file.weights.is_none() => file.weights = Some(rows(r, chunk)?),
+        "weights" if file.weights.is_none() => file.weights = Some(rows(r, chunk, same)?),
         _ => return Err(twice().into()),
     }
     Ok(())
 }
 
-/// Reads a chunk's bytes block by block, checking its size first and its CRC-32 last, and
-/// decodes them with `decode` (called on whole numbers of `size`-byte elements).
-fn read_chunk(
-    r: &mut Limited,
-    chunk: &Chunk,
-    size: u64,
-    mut decode: impl FnMut(&[u8]),
-) -> Result<(), ReadError> {
+/// The number of rows of `chunk`, after checking that its bytes (rows × `row_bytes`) are
+/// still in the file: called before anything is allocated for it.
+fn claimed_rows(r: &Limited, chunk: &Chunk, row_bytes: u64) -> Result<usize, ReadError> {
     let field = chunk.field.as_str();
     let bytes = chunk
         .rows
-        .checked_mul(chunk.width)
-        .and_then(|n| n.checked_mul(size))
+        .checked_mul(row_bytes)
         .ok_or_else(|| invalid(field, "absurd size"))?;
     r.claim(bytes, field)?;
+    usize::try_from(chunk.rows).map_err(|_| invalid(field, "absurd size").into())
+}
+
+/// Reads the `rows` rows of `row_bytes` bytes of `chunk` in blocks of whole rows, checking its
+/// CRC-32 and padding after, and decodes each row with `decode`.
+fn read_chunk(
+    r: &mut Limited,
+    chunk: &Chunk,
+    rows: usize,
+    row_bytes: usize,
+    mut decode: impl FnMut(&[u8]),
+) -> Result<(), ReadError> {
+    let field = chunk.field.as_str();
+    let bytes = (rows * row_bytes) as u64;
     let mut hasher = crc32fast::Hasher::new();
-    let mut buf = vec![0u8; BLOCK];
+    let block = (BLOCK / row_bytes).max(1) * row_bytes;
+    let mut buf = vec![0u8; block];
     let mut left = bytes;
     while left > 0 {
-        let n = left.min(BLOCK as u64) as usize;
+        let n = left.min(block as u64) as usize;
         r.fill(&mut buf[..n], field)?;
         hasher.update(&buf[..n]);
-        decode(&buf[..n]);
+        buf[..n].chunks_exact(row_bytes).for_each(&mut decode);
         left -= n as u64;
     }
     if hasher.finalize() != chunk.crc32 {
@@ -435,32 +443,31 @@ fn read_chunk(
     skip_padding(r, bytes, field)
 }
 
-/// A chunk of f64 rows of width W.
-fn rows<const W: usize>(r: &mut Limited, chunk: &Chunk) -> Result<Vec<[f64; W]>, ReadError> {
-    let mut numbers: Vec<f64> = Vec::with_capacity(chunk.rows as usize * W);
-    read_chunk(r, chunk, 8, |b| {
-        numbers.extend(
-            b.chunks_exact(8)
-                .map(|x| f64::from_le_bytes(x.try_into().expect("8 bytes"))),
-        );
+/// A chunk of rows of W f64 numbers, each turned into a `T` by `make` as it is read (no
+/// intermediate copy of the array).
+fn rows<T, const W: usize>(
+    r: &mut Limited,
+    chunk: &Chunk,
+    make: impl Fn([f64; W]) -> T,
+) -> Result<Vec<T>, ReadError> {
+    let n = claimed_rows(r, chunk, 8 * W as u64)?;
+    let mut out = Vec::with_capacity(n);
+    read_chunk(r, chunk, n, 8 * W, |row| {
+        out.push(make(std::array::from_fn(|k| {
+            f64::from_le_bytes(row[8 * k..8 * k + 8].try_into().expect("8 bytes"))
+        })));
     })?;
-    Ok(numbers
-        .chunks_exact(W)
-        .map(|c| c.try_into().expect("W numbers"))
-        .collect())
+    Ok(out)
 }
 
 /// A chunk of u32 index triples.
 fn indices(r: &mut Limited, chunk: &Chunk) -> Result<Vec<[usize; 3]>, ReadError> {
-    let mut numbers: Vec<usize> = Vec::with_capacity(chunk.rows as usize * 3);
-    read_chunk(r, chunk, 4, |b| {
-        numbers.extend(
-            b.chunks_exact(4)
-                .map(|x| u32::from_le_bytes(x.try_into().expect("4 bytes")) as usize),
-        );
+    let n = claimed_rows(r, chunk, 12)?;
+    let mut out = Vec::with_capacity(n);
+    read_chunk(r, chunk, n, 12, |row| {
+        out.push(std::array::from_fn(|k| {
+            u32::from_le_bytes(row[4 * k..4 * k + 4].try_into().expect("4 bytes")) as usize
+        }));
     })?;
-    Ok(numbers
-        .chunks_exact(3)
-        .map(|c| [c[0], c[1], c[2]])
-        .collect())
+    Ok(out)
 }
