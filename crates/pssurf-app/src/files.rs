@@ -149,7 +149,11 @@ impl Files {
                     match purpose {
                         Purpose::Import => iges_file,
                         Purpose::ImportPoints => crate::scene::is_points_path(p),
-                        _ => e.eq_ignore_ascii_case("json") || iges_file,
+                        _ => {
+                            e.eq_ignore_ascii_case("json")
+                                || e.eq_ignore_ascii_case(pssurf::io::BINARY_EXTENSION)
+                                || iges_file
+                        }
                     }
                 })
             }));

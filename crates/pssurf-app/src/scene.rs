@@ -5,7 +5,10 @@ use std::path::Path;
 use std::sync::Arc;
 
 use nalgebra::{Matrix4, Rotation3, Vector3};
-use pssurf::io::{Durability, atomic_write_bytes};
+use pssurf::io::{
+    Durability, SurfaceEncoding, atomic_write, atomic_write_bytes, is_binary_surface_file,
+    write_surface,
+};
 use pssurf::surface::Surface;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -387,6 +390,22 @@ impl Scene {
     /// Loads a scene or surface file, telling which it was; an IGES file (by its extension)
     /// is imported as a scene of its B-spline surfaces.
     pub fn load_file(path: &Path) -> Result<(Scene, FileKind), SceneError> {
+        if is_binary_surface_file(path) {
+            let surface = pssurf::io::load_limited(path, MAX_FILE_BYTES).map_err(|e| {
+                SceneError::Invalid {
+                    path: path.display().to_string(),
+                    message: e.to_string(),
+                }
+            })?;
+            let name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let scene = Scene {
+                objects: vec![SceneObject::new(&name, surface)],
+            };
+            return Ok((scene, FileKind::Surface));
+        }
         let text = read_bounded(path).map_err(|source| SceneError::Io {
             path: path.display().to_string(),
             source,
@@ -466,18 +485,6 @@ impl Scene {
         }
     }
 
-    /// The text of a file of `kind` holding this scene (an error when a surface file cannot
-    /// hold it; see [`Scene::surface_file_problem`]).
-    pub fn to_file_text(&self, kind: FileKind) -> Result<String, String> {
-        match kind {
-            FileKind::Scene => Ok(self.to_json()),
-            FileKind::Surface => match self.surface_file_problem() {
-                Some(why) => Err(why),
-                None => Ok(pssurf::io::to_json_string(&self.objects[0].surface)),
-            },
-        }
-    }
-
     /// Saves as a scene file, atomically (a failed write leaves the previous file intact)
     /// and durably.
     pub fn save(&self, path: &Path) -> Result<(), SceneError> {
@@ -486,16 +493,27 @@ impl Scene {
 
     /// Saves as a file of `kind`, atomically and durably; a surface file only when the scene
     /// is one object in its own coordinates.
+    /// A surface file is binary when its name ends in `.psb`, else JSON.
     pub fn save_as(&self, path: &Path, kind: FileKind) -> Result<(), SceneError> {
         let name = path.display().to_string();
-        let text = self
-            .to_file_text(kind)
-            .map_err(|message| SceneError::Invalid {
-                path: name.clone(),
-                message,
-            })?;
-        atomic_write_bytes(path, Durability::Durable, text.as_bytes())
-            .map_err(|source| SceneError::Io { path: name, source })
+        let written = match kind {
+            FileKind::Scene => {
+                atomic_write_bytes(path, Durability::Durable, self.to_json().as_bytes())
+            }
+            FileKind::Surface => {
+                if let Some(message) = self.surface_file_problem() {
+                    return Err(SceneError::Invalid {
+                        path: name,
+                        message,
+                    });
+                }
+                let encoding = SurfaceEncoding::for_path(path);
+                atomic_write(path, Durability::Durable, |w| {
+                    write_surface(&self.objects[0].surface, encoding, w)
+                })
+            }
+        };
+        written.map_err(|source| SceneError::Io { path: name, source })
     }
 }
 
@@ -640,5 +658,36 @@ mod fuzz {
             let text: String = rows.iter().map(|r| r.join(",") + "\n").collect();
             let _ = Scene::from_points(&text, "fuzz");
         }
+    }
+}
+
+#[cfg(test)]
+mod binary_files {
+    use super::*;
+
+    /// A one-surface document saved under a `.psb` name is a binary surface file that the
+    /// library loads; the application opens it again as the same surface file.
+    #[test]
+    fn surface_files_named_psb_are_binary_and_open_again() {
+        let dir = tempfile::tempdir().unwrap();
+        let scene = crate::demo::scene();
+        let one = Scene {
+            objects: vec![scene.objects[0].clone()],
+        };
+        let path = dir.path().join("one.psb");
+        one.save_as(&path, FileKind::Surface).unwrap();
+        assert!(pssurf::io::is_binary_surface_file(&path));
+        let (back, kind) = Scene::load_file(&path).unwrap();
+        assert_eq!(kind, FileKind::Surface);
+        assert_eq!(back.objects[0].name, "one");
+        assert_eq!(
+            pssurf::io::to_json_string(&back.objects[0].surface),
+            pssurf::io::to_json_string(&one.objects[0].surface)
+        );
+        // A cut binary file is refused with its name.
+        let bytes = std::fs::read(&path).unwrap();
+        std::fs::write(&path, &bytes[..bytes.len() / 2]).unwrap();
+        let e = Scene::load_file(&path).unwrap_err().to_string();
+        assert!(e.contains("one.psb") && e.contains("truncated"), "{e}");
     }
 }

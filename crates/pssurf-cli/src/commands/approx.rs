@@ -25,7 +25,7 @@ pub struct ApproxArgs {
     /// Refine n_u, n_v until the largest deviation is at most this (model units).
     #[arg(long, value_name = "E")]
     pub tolerance: Option<f64>,
-    /// The UPS surface file to write.
+    /// The UPS surface file to write (binary when it ends in `.psb`, else JSON).
     #[arg(short, long, value_name = "UPS.json")]
     pub output: PathBuf,
 }

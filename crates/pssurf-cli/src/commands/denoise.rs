@@ -52,7 +52,7 @@ pub struct DenoiseArgs {
     /// Soft (default) or hard thresholding.
     #[arg(long, value_enum, default_value_t = Mode::Soft)]
     pub mode: Mode,
-    /// The surface file to write.
+    /// The surface file to write (binary when it ends in `.psb`, else JSON; docs/format.md).
     #[arg(short, long, value_name = "OUT.json")]
     pub output: PathBuf,
 }

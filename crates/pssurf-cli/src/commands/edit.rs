@@ -65,7 +65,7 @@ pub struct EditArgs {
     /// Graph demo: which coordinate curve carries the edit (default: from cu/cv, else u).
     #[arg(long, value_enum)]
     pub direction: Option<CurveDirection>,
-    /// The surface file to write.
+    /// The surface file to write (binary when it ends in `.psb`, else JSON; docs/format.md).
     #[arg(short, long, value_name = "OUT.json")]
     pub output: PathBuf,
 }

@@ -29,7 +29,7 @@ pub struct FairArgs {
     /// The energy to minimise.
     #[arg(long, value_enum, default_value_t = EnergyArg::Jumps)]
     pub energy: EnergyArg,
-    /// The surface file to write.
+    /// The surface file to write (binary when it ends in `.psb`, else JSON; docs/format.md).
     #[arg(short, long, value_name = "OUT.json")]
     pub output: PathBuf,
 }

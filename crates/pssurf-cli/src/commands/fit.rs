@@ -60,7 +60,8 @@ pub struct FitArgs {
     /// (the partial derivatives of z; estimated when absent).
     #[arg(value_name = "DATA.csv")]
     pub data: PathBuf,
-    /// The surface file to write (pssurf JSON, see docs/format.md).
+    /// The surface file to write: pssurf JSON, or the binary encoding when it ends in `.psb`
+    /// (docs/format.md).
     #[arg(short, long, value_name = "SURF.json")]
     pub output: PathBuf,
     /// Use these triangles instead of the Delaunay triangulation: CSV rows `i,j,k` of

@@ -112,7 +112,7 @@ pub struct NewUpsArgs {
     /// A parametric surface (default) or a functional one.
     #[arg(long, value_enum, default_value_t = Kind::Parametric)]
     pub kind: Kind,
-    /// The surface file to write.
+    /// The surface file to write (binary when it ends in `.psb`, else JSON; docs/format.md).
     #[arg(short, long, value_name = "SURF.json")]
     pub output: PathBuf,
 }

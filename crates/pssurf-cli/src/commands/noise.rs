@@ -29,7 +29,7 @@ pub struct NoiseArgs {
     /// The random seed: the same seed gives the same noise.
     #[arg(long, value_name = "S")]
     pub seed: u64,
-    /// The surface file to write.
+    /// The surface file to write (binary when it ends in `.psb`, else JSON; docs/format.md).
     #[arg(short, long, value_name = "OUT.json")]
     pub output: PathBuf,
 }

@@ -17,7 +17,7 @@ pub struct SubdivideArgs {
     /// the surface itself does not change).
     #[arg(long, value_name = "T")]
     pub times: u32,
-    /// The surface file to write.
+    /// The surface file to write (binary when it ends in `.psb`, else JSON; docs/format.md).
     #[arg(short, long, value_name = "OUT.json")]
     pub output: PathBuf,
 }
