@@ -33,6 +33,16 @@ fn rows<'a, T: numpy::Element>(
         .map_err(|_| value_error(format!("{name} must be a contiguous array")))
 }
 
+/// Any array-like (list, float32, strided, read-only) as a C-contiguous float64 NumPy array,
+/// converted by NumPy itself; a `ValueError` naming `name` when NumPy cannot.
+pub fn float64_array<'py>(obj: &Bound<'py, PyAny>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+    let np = obj.py().import("numpy")?;
+    let kwargs = pyo3::types::PyDict::new(obj.py());
+    kwargs.set_item("dtype", "float64")?;
+    np.call_method("ascontiguousarray", (obj,), Some(&kwargs))
+        .map_err(|e| value_error(format!("{name} must be an array of real numbers: {e}")))
+}
+
 /// Points from an (n, 2) array.
 pub fn points_from(a: &PyReadonlyArray2<'_, f64>, name: &str) -> PyResult<Vec<Point2<f64>>> {
     Ok(rows(a, 2, name)?

@@ -123,6 +123,19 @@ fn map<T: Send + Copy + Default>(
     }
 }
 
+/// The derivative `d` of s at `p`, computing no more than it needs (the value alone, the
+/// gradient, or the whole jet); `None` outside.
+#[inline]
+fn derivative_at(ev: &mut Evaluator<'_, f64>, p: Point2<f64>, d: Derivative) -> Option<[f64; 1]> {
+    match d.order() {
+        0 => ev.value(p).map(|v| [v]),
+        1 => ev
+            .gradient(p)
+            .map(|(_, sx, sy)| [if d.dx == 1 { sx } else { sy }]),
+        _ => ev.jet(p).map(|j| [d.pick(&j.jet)]),
+    }
+}
+
 /// s or one of its derivatives at `points`, in parallel.
 fn evaluate_at(
     spline: &PsSpline<f64>,
@@ -130,14 +143,7 @@ fn evaluate_at(
     d: Derivative,
     outside: Outside,
 ) -> Result<Vec<f64>, String> {
-    let values: Vec<Option<[f64; 1]>> = match d.order() {
-        0 => map(spline, points, |ev, p| ev.value(p).map(|v| [v])),
-        1 => map(spline, points, |ev, p| {
-            ev.gradient(p)
-                .map(|(_, sx, sy)| [if d.dx == 1 { sx } else { sy }])
-        }),
-        _ => map(spline, points, |ev, p| ev.jet(p).map(|j| [d.pick(&j.jet)])),
-    };
+    let values = map(spline, points, |ev, p| derivative_at(ev, p, d));
     finish(values, points, outside)
 }
 
@@ -167,13 +173,7 @@ pub fn evaluate_grid(
         .iter()
         .flat_map(|&a| y.iter().map(move |&b| Point2::new(a, b)))
         .collect();
-    let values: Vec<Option<[f64; 1]>> = match d.order() {
-        1 => spline.map_points(&points, |ev, p| {
-            ev.gradient(p)
-                .map(|(_, sx, sy)| [if d.dx == 1 { sx } else { sy }])
-        }),
-        _ => spline.map_points(&points, |ev, p| ev.jet(p).map(|j| [d.pick(&j.jet)])),
-    };
+    let values = spline.map_points(&points, |ev, p| derivative_at(ev, p, d));
     finish(values, &points, outside)
 }
 
@@ -200,44 +200,28 @@ fn check_inside(
     Ok(())
 }
 
-/// Rows [s, s_x, s_y, s_xx, s_xy, s_yy] at the points.
-pub fn jet_rows(
+/// One row of `W` numbers computed by `row` from the jet at each point (x[k], y[k]).
+pub fn jet_rows<const W: usize>(
     spline: &PsSpline<f64>,
     x: &[f64],
     y: &[f64],
     outside: Outside,
+    row: impl Fn(Point2<f64>, &Jet<f64>) -> [f64; W] + Sync,
 ) -> Result<Vec<f64>, String> {
     let points = zip_points(x, y)?;
-    let values = map(spline, &points, |ev, p| {
-        ev.jet(p).map(|j| {
-            [
-                j.jet.value,
-                j.jet.dx,
-                j.jet.dy,
-                j.jet.dxx,
-                j.jet.dxy,
-                j.jet.dyy,
-            ]
-        })
-    });
+    let values = map(spline, &points, |ev, p| ev.jet(p).map(|j| row(p, &j.jet)));
     finish(values, &points, outside)
 }
 
-/// Rows [K, H, κ1, κ2] of the graph (x, y, s(x, y)) at the points (thesis (20), (21) of the
-/// curvature seed; a graph is never singular).
-pub fn curvature_rows(
-    spline: &PsSpline<f64>,
-    x: &[f64],
-    y: &[f64],
-    outside: Outside,
-) -> Result<Vec<f64>, String> {
-    let points = zip_points(x, y)?;
-    let values = map(spline, &points, |ev, p| {
-        ev.jet(p).map(|j| {
-            let c = PrincipalCurvatures::from_jet(&graph_jet(p, &j.jet))
-                .map_or(PrincipalCurvatures::UNDEFINED, |(c, _)| c);
-            [c.gaussian, c.mean, c.k1, c.k2]
-        })
-    });
-    finish(values, &points, outside)
+/// The row [s, s_x, s_y, s_xx, s_xy, s_yy].
+pub fn jet_entries(_: Point2<f64>, j: &Jet<f64>) -> [f64; 6] {
+    [j.value, j.dx, j.dy, j.dxx, j.dxy, j.dyy]
+}
+
+/// The row [K, H, κ1, κ2] of the graph (x, y, s(x, y)) (curvature seed, (20) and (21));
+/// a graph is never singular.
+pub fn graph_curvatures(p: Point2<f64>, j: &Jet<f64>) -> [f64; 4] {
+    let c = PrincipalCurvatures::from_jet(&graph_jet(p, j))
+        .map_or(PrincipalCurvatures::UNDEFINED, |(c, _)| c);
+    [c.gaussian, c.mean, c.k1, c.k2]
 }

@@ -15,7 +15,7 @@ use pyo3::prelude::*;
 use crate::arrays::{float_rows, points_from, rows3, slice, triangles_from, vectors_from};
 use crate::errors::{check_budget, value_error};
 use crate::evaluate::{
-    Derivative, Outside, curvature_rows, evaluate_grid, evaluate_points, jet_rows,
+    Derivative, Outside, evaluate_grid, evaluate_points, graph_curvatures, jet_entries, jet_rows,
 };
 
 /// The interpolant of scattered data: a functional PS-spline z = s(x, y) on a triangulation
@@ -26,6 +26,22 @@ pub struct Interpolant {
 }
 
 impl Interpolant {
+    /// An (n, W) array of `row` evaluated from the jet at each point, the GIL released.
+    fn rows<'py, const W: usize>(
+        &self,
+        py: Python<'py>,
+        x: &PyReadonlyArray1<'_, f64>,
+        y: &PyReadonlyArray1<'_, f64>,
+        fill: Option<f64>,
+        row: impl Fn(nalgebra::Point2<f64>, &pssurf::bezier::Jet<f64>) -> [f64; W] + Sync + Send,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (x, y) = (slice(x, "x")?, slice(y, "y")?);
+        let out = py
+            .detach(|| jet_rows(&self.spline, x, y, Outside::from(fill), row))
+            .map_err(value_error)?;
+        float_rows(py, out, W)
+    }
+
     /// The spline.
     pub fn spline(&self) -> &PsSpline<f64> {
         &self.spline
@@ -226,11 +242,7 @@ impl Interpolant {
         y: PyReadonlyArray1<'_, f64>,
         fill: Option<f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-        let out = py
-            .detach(|| jet_rows(&self.spline, x, y, Outside::from(fill)))
-            .map_err(value_error)?;
-        float_rows(py, out, 6)
+        self.rows(py, &x, &y, fill, jet_entries)
     }
 
     /// Rows [K, H, κ1, κ2] of the graph z = s(x, y) at the points; `fill` outside.
@@ -242,11 +254,7 @@ impl Interpolant {
         y: PyReadonlyArray1<'_, f64>,
         fill: Option<f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-        let out = py
-            .detach(|| curvature_rows(&self.spline, x, y, Outside::from(fill)))
-            .map_err(value_error)?;
-        float_rows(py, out, 4)
+        self.rows(py, &x, &y, fill, graph_curvatures)
     }
 
     /// The triangulation's vertices, shape (n, 2) (in the spline's order).

@@ -9,8 +9,8 @@ use pssurf::ups::threshold::{Shrink, ThresholdRule};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::arrays::{float_rows, points_from, rows3};
-use crate::errors::{check_budget, file_error, value_error};
+use crate::arrays::{float_rows, float64_array, points_from, rows3};
+use crate::errors::{check_budget, file_error, memory_budget, value_error};
 
 /// A surface of any kind (functional or parametric PS, NURPS, UPS, Bézier, NURBS).
 #[pyclass(name = "Surface", module = "pssurf._core", frozen)]
@@ -72,13 +72,17 @@ impl PySurface {
             .map_err(file_error)
     }
 
-    /// Points of the surface at parameters `uv` of shape (n, 2): shape (n, 3), NaN outside
-    /// the domain.
+    /// Points of the surface at parameters `uv` of shape (n, 2) (any array-like): shape
+    /// (n, 3), NaN outside the domain.
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
-        uv: PyReadonlyArray2<'_, f64>,
+        uv: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let uv = float64_array(uv, "uv")?;
+        let uv: PyReadonlyArray2<'_, f64> = uv
+            .extract()
+            .map_err(|_| value_error("uv must have shape (n, 2)"))?;
         let uv = points_from(&uv, "uv")?;
         let flat = py.detach(|| evaluate_points(&self.surface, &uv));
         float_rows(py, flat, 3)
@@ -308,10 +312,31 @@ fn flatten3(v: &[Vector3<f64>]) -> Vec<f64> {
     v.iter().flat_map(|p| [p.x, p.y, p.z]).collect()
 }
 
-/// Reads a surface file (JSON or binary, by its extension), validating everything.
+/// Memory per byte of a surface file while it is loaded (the CLI's measured bound).
+const LOAD_BYTES_PER_FILE_BYTE: u64 = 8;
+
+/// The most a pipe or device (whose size is unknown) may deliver before it is refused.
+const STREAM_LIMIT: u64 = 256 << 20;
+
+/// Reads a surface file (JSON or binary, told apart by its first bytes), validating
+/// everything. A regular file whose loading would exceed the memory budget is refused by
+/// `MemoryError` before reading; a pipe or device (an endless one such as /dev/zero) after
+/// 256 MiB, by `OSError`.
 #[pyfunction]
 pub fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PySurface> {
-    let s = py.detach(|| pssurf::io::load(&path)).map_err(file_error)?;
+    let limit = match std::fs::metadata(&path) {
+        Ok(meta) if meta.is_file() => {
+            check_budget(
+                &format!("loading {}", path.display()),
+                meta.len() as u128 * LOAD_BYTES_PER_FILE_BYTE as u128,
+            )?;
+            memory_budget() / LOAD_BYTES_PER_FILE_BYTE
+        }
+        _ => STREAM_LIMIT,
+    };
+    let s = py
+        .detach(|| pssurf::io::load_limited(&path, limit))
+        .map_err(file_error)?;
     Ok(PySurface::new(s))
 }
 

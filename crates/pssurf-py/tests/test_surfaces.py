@@ -23,9 +23,18 @@ def test_save_and_load_round_trip(rng, tmp_path):
     uv = np.array([c, c + [0.3, -0.2], [40.0, 40.0]])
     a, b = u.evaluate(uv), back.evaluate(uv)
     assert np.array_equal(a[:2], b[:2]) and np.isnan(a[2]).all()
+    # Lists, float32 and strided views are converted.
+    assert np.array_equal(u.evaluate(uv.tolist()), a, equal_nan=True)
+    assert np.array_equal(u.evaluate(np.asfortranarray(uv)), a, equal_nan=True)
+    with pytest.raises(ValueError, match="uv"):
+        u.evaluate([[1.0, 2.0, 3.0]])
+    with pytest.raises(ValueError, match="uv"):
+        u.evaluate([["a", "b"]])
 
 
 def test_file_errors(tmp_path):
+    with pytest.raises(OSError, match="allowed"):
+        pssurf.load("/dev/zero")
     with pytest.raises(OSError, match="missing.json"):
         pssurf.load(tmp_path / "missing.json")
     bad = tmp_path / "bad.json"

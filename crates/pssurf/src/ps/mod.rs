@@ -3,6 +3,7 @@
 //! Bézier nets, evaluation, derivatives, integration, and the rational NURPS form.
 
 pub mod basis;
+mod bulk_eval;
 pub mod design;
 pub mod energy;
 pub mod fair;
@@ -11,7 +12,6 @@ pub mod net;
 pub mod nurps;
 pub mod ps_triangles;
 pub mod quadrics;
-mod raster;
 pub mod refinement;
 pub mod spline;
 
