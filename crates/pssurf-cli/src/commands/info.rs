@@ -4,8 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use pssurf::ps::PsBasis;
-use pssurf::ps::ps_triangles::quality;
-use pssurf::surface::{ControlNet, PiecewiseSurface, Surface, UpsSurface};
+use pssurf::ps::ps_triangles::{quality, quality_for};
+use pssurf::surface::{ControlId, ControlNet, Domain, PiecewiseSurface, Surface, UpsSurface};
+use pssurf::ups::fixed_ps_triangle;
 use serde::Serialize;
 
 /// Arguments of `pssurf info`.
@@ -310,16 +311,29 @@ pub(crate) fn scene_objects(path: &std::path::Path) -> Result<Option<Vec<pssurf:
 }
 
 fn collect(s: &Surface, file: String) -> Info {
-    let points = s.control_points();
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &points {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p.position[d]);
-            hi[d] = hi[d].max(p.position[d]);
-        }
-    }
-    let domain = s.domain();
+    // Bounds of the control points without collecting them (millions for a fine UPS).
+    let count = s.control_count();
+    let (lo, hi) = (0..count)
+        .filter_map(|k| s.control_point(ControlId(k)))
+        .fold(
+            ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+            |(mut lo, mut hi), p| {
+                for d in 0..3 {
+                    lo[d] = lo[d].min(p.position[d]);
+                    hi[d] = hi[d].max(p.position[d]);
+                }
+                (lo, hi)
+            },
+        );
+    // A UPS surface is described from its lattice: building its general form (a PS basis of
+    // every vertex) would take seconds for millions of control points.
+    let (domain, ps) = match s.uniform() {
+        Some(u) => (
+            uniform_domain(u).unwrap_or_else(|| s.domain()),
+            Some(uniform_ps_info(u)),
+        ),
+        None => (s.domain(), s.ps_basis().map(|b| ps_info(b))),
+    };
     let (dlo, dhi) = domain.bounds();
     Info {
         file,
@@ -331,13 +345,18 @@ fn collect(s: &Surface, file: String) -> Info {
         domain_max: [dhi.x, dhi.y],
         domain_area: domain.area(),
         domain_holes: domain.hole_count(),
-        control_points: points.len(),
+        control_points: count,
         control_min: lo,
         control_max: hi,
-        weights: s
-            .is_rational()
-            .then(|| stats(points.iter().map(|p| p.weight).collect())),
-        ps: s.ps_basis().map(|b| ps_info(b)),
+        weights: s.is_rational().then(|| {
+            stats(
+                (0..count)
+                    .filter_map(|k| s.control_point(ControlId(k)))
+                    .map(|p| p.weight)
+                    .collect(),
+            )
+        }),
+        ps,
         degree: s.piece_degree(),
         nurbs: match s {
             Surface::Nurbs(n) => Some(NurbsInfo {
@@ -372,6 +391,55 @@ fn ps_info(basis: &PsBasis) -> PsInfo {
             None => "given points".into(),
         },
         molecule_number: stats((0..n).map(|i| t.molecule_number(i) as f64).collect()),
+        ps_triangle_area_ratio: stats(q.iter().map(|q| q.area_ratio).collect()),
+        ps_triangle_min_angle_deg: stats(q.iter().map(|q| q.min_angle_deg).collect()),
+    }
+}
+
+/// The domain of a UPS surface: its lattice polygon (`None` if the polygon is refused as a
+/// domain, which a validated polygon never is).
+fn uniform_domain(u: &UpsSurface) -> Option<Domain> {
+    let g = u.grid();
+    let corners = g
+        .polygon()
+        .vertices()
+        .iter()
+        .map(|&c| g.lattice().point(c))
+        .collect();
+    Domain::from_loops(vec![corners]).ok()
+}
+
+/// What [`ps_info`] reports of the general form, read off the lattice: the same counts, the
+/// molecule numbers, and the quality of the fixed PS-triangles t(6) against each vertex's
+/// PS-points.
+fn uniform_ps_info(u: &UpsSurface) -> PsInfo {
+    let g = u.grid();
+    let lattice = g.lattice();
+    let slots = g.real_slots();
+    // A vertex's PS-points relative to it depend only on which of its six sectors are
+    // triangles: one quality per pattern (at most 64), computed at its first vertex.
+    let mut by_pattern = std::collections::HashMap::new();
+    let q: Vec<_> = slots
+        .iter()
+        .map(|&s| {
+            *by_pattern.entry(g.sectors(s)).or_insert_with(|| {
+                let v = lattice.point(g.lattice_point(s));
+                quality_for(&g.ps_points(s), &fixed_ps_triangle(lattice, v))
+            })
+        })
+        .collect();
+    PsInfo {
+        vertices: g.vertex_count(),
+        triangles: g.triangle_count(),
+        // Each edge once, from the end it leaves in direction 0°, 60° or 120°.
+        edges: slots
+            .iter()
+            .map(|&s| (0..3).filter(|&k| g.has_edge(s, k)).count())
+            .sum(),
+        boundary_vertices: slots.iter().filter(|&&s| g.is_boundary(s)).count(),
+        basis_functions: 3 * g.vertex_count(),
+        split: "incenter".into(),
+        molecule_number: stats(slots.iter().map(|&s| g.molecule_number(s) as f64).collect()),
         ps_triangle_area_ratio: stats(q.iter().map(|q| q.area_ratio).collect()),
         ps_triangle_min_angle_deg: stats(q.iter().map(|q| q.min_angle_deg).collect()),
     }
@@ -483,4 +551,62 @@ fn print_table(info: &Info) -> Result<()> {
         )?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The report of a UPS surface read off its lattice equals the report of its general
+    /// form (counts exactly, statistics to rounding), on several polygons.
+    #[test]
+    fn uniform_reports_equal_the_general_forms() {
+        use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface};
+        for (sides, size) in [(3, 4), (4, 3), (5, 2), (6, 3)] {
+            let lattice = Lattice {
+                base: 0.7,
+                origin: nalgebra::Point2::new(-2.0, 1.5),
+            };
+            let polygon = LatticePolygon::standard(sides, size).unwrap();
+            let grid = UpsGrid::new(lattice, polygon).unwrap();
+            let u = graph_surface(grid, GraphKind::Functional, |p| pssurf::ps::Hermite {
+                value: p.x * p.y,
+                dx: p.y,
+                dy: p.x,
+            });
+            let general = u.to_general().unwrap();
+            let (a, b) = (uniform_ps_info(&u), ps_info(general.ps_basis().unwrap()));
+            let tag = format!("{sides}-gon of size {size}");
+            assert_eq!(
+                (
+                    a.vertices,
+                    a.triangles,
+                    a.edges,
+                    a.boundary_vertices,
+                    a.basis_functions
+                ),
+                (
+                    b.vertices,
+                    b.triangles,
+                    b.edges,
+                    b.boundary_vertices,
+                    b.basis_functions
+                ),
+                "{tag}"
+            );
+            assert_eq!(a.split, b.split, "{tag}");
+            for (x, y) in [
+                (&a.molecule_number, &b.molecule_number),
+                (&a.ps_triangle_area_ratio, &b.ps_triangle_area_ratio),
+                (&a.ps_triangle_min_angle_deg, &b.ps_triangle_min_angle_deg),
+            ] {
+                for (p, q) in [(x.min, y.min), (x.median, y.median), (x.max, y.max)] {
+                    assert!((p - q).abs() <= 1e-12 * q.abs(), "{tag}: {p} vs {q}");
+                }
+            }
+            let (d, e) = (uniform_domain(&u).unwrap(), general.domain());
+            assert!((d.area() - e.area()).abs() <= 1e-12 * e.area(), "{tag}");
+            assert_eq!(d.bounds(), e.bounds(), "{tag}");
+        }
+    }
 }

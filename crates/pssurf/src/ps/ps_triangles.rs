@@ -246,7 +246,12 @@ pub fn quality(
     i: usize,
     t: &Triangle2,
 ) -> PsTriangleQuality {
-    let hull = convex_hull(&ps_points(tri, refinement, i));
+    quality_for(&ps_points(tri, refinement, i), t)
+}
+
+/// The quality of PS-triangle `t` for these PS-points (see [`quality`]).
+pub fn quality_for(ps_points: &[Point2<f64>], t: &Triangle2) -> PsTriangleQuality {
+    let hull = convex_hull(ps_points);
     let hull_area: f64 = (1..hull.len().saturating_sub(1))
         .map(|k| Triangle2::new(hull[0], hull[k], hull[k + 1]).area())
         .sum();

@@ -326,7 +326,22 @@ impl UniformSurface {
 
 impl ParametricSurface for UniformSurface {
     fn domain_bounds(&self) -> (Point2<f64>, Point2<f64>) {
-        self.general().domain_bounds()
+        // The polygon's corners are its extreme lattice points (no general form needed).
+        let grid = self.ups.grid();
+        let lattice = grid.lattice();
+        grid.polygon().vertices().iter().fold(
+            (
+                Point2::new(f64::INFINITY, f64::INFINITY),
+                Point2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+            ),
+            |(lo, hi), &c| {
+                let p = lattice.point(c);
+                (
+                    Point2::new(lo.x.min(p.x), lo.y.min(p.y)),
+                    Point2::new(hi.x.max(p.x), hi.y.max(p.y)),
+                )
+            },
+        )
     }
     fn cursor_near(&self, uv: Point2<f64>) -> Cursor {
         self.general().cursor_near(uv)
@@ -339,7 +354,8 @@ impl ParametricSurface for UniformSurface {
 
 impl PiecewiseSurface for UniformSurface {
     fn piece_count(&self) -> usize {
-        self.general().piece_count()
+        // Six sub-triangles per triangle of the uniform triangulation.
+        6 * self.ups.grid().triangle_count()
     }
     fn piece_kind(&self) -> PieceKind {
         PieceKind::Triangle

@@ -2,6 +2,7 @@
 //! 6.2.3): every lattice point of the polygon's bounding box has a slot, real vertices are
 //! marked, and neighbours, molecules and boundary cases are index arithmetic.
 
+use nalgebra::{Point2, Vector2};
 use rayon::prelude::*;
 
 use super::UpsError;
@@ -238,6 +239,30 @@ impl UpsGrid {
     pub fn has_edge(&self, s: usize, dir: usize) -> bool {
         let sec = self.sectors(s);
         sec[dir] || sec[(dir + 5) % 6]
+    }
+
+    /// The PS-points of the vertex in slot s (Lemma 2.1; as
+    /// [`ps_points`](crate::ps::ps_triangles::ps_points) of the general form, without it):
+    /// the vertex V, the points V + d/4 halfway to the midpoint of each edge V + d of Δ, and
+    /// V + (d_k + d_{k+1})/6 halfway to the centroid (the incentre of an equilateral triangle)
+    /// of each triangle of its molecule.
+    pub fn ps_points(&self, s: usize) -> Vec<Point2<f64>> {
+        let v = self.lattice.point(self.lattice_point(s));
+        let d = |k: usize| {
+            let e = self.lattice.point(NEIGHBORS[k]) - self.lattice.point([0, 0]);
+            Vector2::new(e.x, e.y)
+        };
+        let sectors = self.sectors(s);
+        let mut out = vec![v];
+        for k in 0..6 {
+            if self.has_edge(s, k) {
+                out.push(v + d(k) / 4.0);
+            }
+            if sectors[k] {
+                out.push(v + (d(k) + d((k + 1) % 6)) / 6.0);
+            }
+        }
+        out
     }
 
     /// The molecule number m_i: the number of triangles around a real vertex.

@@ -921,3 +921,38 @@ mod hostile_polygons {
         }
     }
 }
+
+/// The PS-points read off the lattice are those of the general form, vertex by vertex (as
+/// sets, to rounding), on every standard polygon; and a UPS surface reports its piece count
+/// and bounds without building its general form, equal to the general form's.
+#[test]
+fn lattice_ps_points_and_counts_match_the_general_form() {
+    use crate::ps::ps_triangles::ps_points;
+    use crate::surface::{ParametricSurface, PiecewiseSurface, Surface, UpsSurface};
+    for (name, g) in grids(2) {
+        let ups = Ups::hermite(g.clone(), wave);
+        let general = ups.to_ps().unwrap();
+        let basis = general.basis();
+        for (k, &s) in g.real_slots().iter().enumerate() {
+            let mut ours = g.ps_points(s);
+            let mut theirs = ps_points(basis.triangulation(), basis.refinement(), k);
+            assert_eq!(ours.len(), theirs.len(), "{name}: slot {s}");
+            let key = |p: &Point2<f64>| {
+                (p.x * 1e9).round() as i64 * 1_000_000_007 + (p.y * 1e9).round() as i64
+            };
+            ours.sort_by_key(key);
+            theirs.sort_by_key(key);
+            for (a, b) in ours.iter().zip(&theirs) {
+                assert!((a - b).norm() < 1e-13, "{name}: slot {s}: {a} vs {b}");
+            }
+        }
+        let surface = Surface::from(UpsSurface::Parametric(ups));
+        let general = Surface::Parametric(general);
+        assert_eq!(surface.piece_count(), general.piece_count(), "{name}");
+        assert_eq!(surface.domain_bounds(), general.domain_bounds(), "{name}");
+        let Surface::Uniform(u) = &surface else {
+            unreachable!()
+        };
+        assert!(!u.has_general(), "{name}: counted without the general form");
+    }
+}
