@@ -11,6 +11,11 @@ use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, Side};
 use thiserror::Error;
 
+mod conjugate_gradient;
+pub use conjugate_gradient::{
+    BlockJacobi, Iterated, Stopping, SymmetricBlocks, conjugate_gradient,
+};
+
 /// A sparse solve failed.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum SparseError {

@@ -63,12 +63,13 @@ pub fn run(args: &FairArgs) -> Result<()> {
     let f = fair(&surface, &opts)?;
     crate::output::save_surface(&f.surface, &args.output)?;
     eprintln!(
-        "energy {} -> {}; moved {} control points (largest move {}), boundary kept; normal equations to {}; wrote {}",
+        "energy {} -> {}; moved {} control points (largest move {}), boundary kept; normal equations to {} ({}); wrote {}",
         Significant(f.energy_before, 6),
         Significant(f.energy_after, 6),
         f.moved,
         Significant(f.largest_move, 4),
         Significant(f.normal_residual, 2),
+        f.solver,
         args.output.display()
     );
     Ok(())

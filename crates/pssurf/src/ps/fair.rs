@@ -23,7 +23,9 @@
 use thiserror::Error;
 
 use super::Energy;
-use crate::sparse::{SparseError, SpdPattern};
+use crate::sparse::{
+    BlockJacobi, SparseError, SpdPattern, Stopping, SymmetricBlocks, conjugate_gradient,
+};
 use crate::surface::{ControlFreedom, ControlId, ControlNet, ControlPoint, EditError, Surface};
 
 /// How to fair.
@@ -60,6 +62,32 @@ pub struct Faired {
     pub largest_move: f64,
     /// ‖A c − b‖ / ‖b‖ of the normal equations at the solution.
     pub normal_residual: f64,
+    /// How the normal equations were solved.
+    pub solver: FairSolver,
+}
+
+/// How the fairing's normal equations were solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FairSolver {
+    /// Block-Jacobi preconditioned conjugate gradients, with the largest number of steps
+    /// that a coordinate took.
+    ConjugateGradient {
+        /// The steps.
+        steps: usize,
+    },
+    /// A sparse Cholesky factorisation (with iterative refinement).
+    Cholesky,
+}
+
+impl std::fmt::Display for FairSolver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FairSolver::ConjugateGradient { steps } => {
+                write!(f, "conjugate gradients, {steps} steps")
+            }
+            FairSolver::Cholesky => write!(f, "sparse Cholesky"),
+        }
+    }
 }
 
 /// Why a surface could not be faired.
@@ -82,6 +110,20 @@ pub enum FairError {
     #[error(transparent)]
     Edit(#[from] EditError),
 }
+
+/// The weight from which the normal equations are solved by conjugate gradients (block
+/// Jacobi preconditioned) instead of a sparse Cholesky factorisation. The ridge w σ bounds
+/// the smallest eigenvalue away from zero, so the number of steps grows like 1/√w:
+/// measured on the `fair` bench's 100k-vertex hexagon, 71 steps at w = 0.1 and 214 at 0.01
+/// (docs/performance.md). Below it, and whenever the iteration does not reach
+/// [`ITERATIVE_RESIDUAL`] within [`ITERATIVE_MAX_STEPS`], the factorisation is used.
+pub const ITERATIVE_FROM_WEIGHT: f64 = 1e-2;
+
+/// The relative residual of the normal equations at which the iteration stops.
+pub const ITERATIVE_RESIDUAL: f64 = 1e-13;
+
+/// The steps after which the iteration gives way to the factorisation.
+pub const ITERATIVE_MAX_STEPS: usize = 2000;
 
 /// Fairs `s` with its boundary fixed (see the module documentation).
 pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
@@ -108,7 +150,6 @@ pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
         return Err(FairError::NoInterior);
     }
     let q = basis.energy_matrix(opts.energy);
-    let (positions, values) = q.lower_entries();
     let coords: Vec<usize> = match s.freedom() {
         ControlFreedom::Full => vec![0, 1, 2],
         ControlFreedom::Height => vec![2],
@@ -134,67 +175,8 @@ pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
             rhs[b * m + k] = -g[v / 3][v % 3];
         }
     }
-    let mut ii_pos = Vec::new();
-    let mut ii_val = Vec::new();
-    let mut diagonal = 0.0;
-    for (&(r, c), &v) in positions.iter().zip(&values) {
-        let (ir, ic) = (index[r], index[c]);
-        if ir != usize::MAX && ic != usize::MAX {
-            ii_pos.push((ir.max(ic), ir.min(ic)));
-            ii_val.push(v);
-            if ir == ic {
-                diagonal += v;
-            }
-        }
-    }
-    let sigma = diagonal / m as f64;
-    let ridge = opts.weight * if sigma > 0.0 { sigma } else { 1.0 };
-    for k in 0..m {
-        ii_pos.push((k, k));
-        ii_val.push(ridge);
-    }
-    let pattern = SpdPattern::new(m, &ii_pos).map_err(FairError::Singular)?;
-    let factor = pattern.factor(&ii_val).map_err(FairError::Singular)?;
-    // A x by the stored entries (lower triangle and its mirror).
-    let apply = |x: &[f64]| -> Vec<f64> {
-        let mut y = vec![0.0; x.len()];
-        for (&(r, c), &v) in ii_pos.iter().zip(&ii_val) {
-            for b in 0..coords.len() {
-                y[b * m + r] += v * x[b * m + c];
-                if r != c {
-                    y[b * m + c] += v * x[b * m + r];
-                }
-            }
-        }
-        y
-    };
-    // With weight 0 the energy alone is ill-conditioned on meshes with slivers (measured: a
-    // residual of 5e-9 on a random Delaunay triangulation): iterative refinement with the same
-    // factor brings the normal equations to rounding. With a positive weight the first solve
-    // is already there, and the refinement is skipped.
-    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let mut solution = factor.solve_many(&rhs, coords.len());
-    for _ in 0..3 {
-        let r: Vec<f64> = rhs
-            .iter()
-            .zip(apply(&solution))
-            .map(|(b, a)| b - a)
-            .collect();
-        if norm(&r) <= 1e-13 * norm(&rhs) {
-            break;
-        }
-        let correction = factor.solve_many(&r, coords.len());
-        for (x, d) in solution.iter_mut().zip(&correction) {
-            *x += d;
-        }
-    }
-    let diff: Vec<f64> = apply(&solution)
-        .iter()
-        .zip(&rhs)
-        .map(|(a, b)| a - b)
-        .collect();
-    let scale = norm(&rhs).max(1e-300);
-    let normal_residual = norm(&diff) / scale;
+    let system = interior_system(&q, tri, opts.weight);
+    let (solution, normal_residual, solver) = solve(&system, &rhs, coords.len(), opts.weight)?;
     // The new control points.
     let mut changes = Vec::new();
     let mut largest_move = 0.0f64;
@@ -231,8 +213,128 @@ pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
         moved: changes.len(),
         largest_move,
         normal_residual,
+        solver,
         surface,
     })
+}
+
+/// The normal equations' matrix Q_II + w σ I on the interior vertices' values (numbered in
+/// the order of the vertices), σ the mean diagonal of Q_II.
+fn interior_system(
+    q: &crate::sparse::Block3Matrix,
+    tri: &crate::triangulation::Triangulation,
+    weight: f64,
+) -> SymmetricBlocks {
+    let mut keep = vec![None; tri.vertex_count()];
+    let mut next = 0u32;
+    for (i, k) in keep.iter_mut().enumerate() {
+        if !tri.is_boundary_vertex(i) {
+            *k = Some(next);
+            next += 1;
+        }
+    }
+    let (mut diagonal, mut count) = (0.0, 0usize);
+    for (i, j, b) in q.blocks() {
+        if i == j && keep[i].is_some() {
+            diagonal += b[0][0] + b[1][1] + b[2][2];
+            count += 3;
+        }
+    }
+    let sigma = diagonal / count.max(1) as f64;
+    let ridge = weight * if sigma > 0.0 { sigma } else { 1.0 };
+    SymmetricBlocks::restrict(q, &keep, ridge)
+}
+
+/// The solutions for `columns` right-hand sides (one after the other) and the relative
+/// residual of the normal equations: by conjugate gradients from [`ITERATIVE_FROM_WEIGHT`]
+/// on, else (or when they do not converge) by Cholesky.
+fn solve(
+    a: &SymmetricBlocks,
+    rhs: &[f64],
+    columns: usize,
+    weight: f64,
+) -> Result<(Vec<f64>, f64, FairSolver), FairError> {
+    let (solution, solver) = match (weight >= ITERATIVE_FROM_WEIGHT)
+        .then(|| iterate(a, rhs, columns))
+        .flatten()
+    {
+        Some((x, steps)) => (x, FairSolver::ConjugateGradient { steps }),
+        None => (factor_and_solve(a, rhs, columns)?, FairSolver::Cholesky),
+    };
+    let residual = residual(a, &solution, rhs, columns);
+    Ok((solution, residual, solver))
+}
+
+/// Sparse Cholesky, then iterative refinement with the same factor. With weight 0 the energy
+/// alone is ill-conditioned on meshes with slivers (measured: a residual of 5e-9 on a random
+/// Delaunay triangulation): the refinement brings the normal equations to rounding. With a
+/// positive weight the first solve is already there.
+fn factor_and_solve(
+    a: &SymmetricBlocks,
+    rhs: &[f64],
+    columns: usize,
+) -> Result<Vec<f64>, FairError> {
+    let (positions, values) = a.lower_entries();
+    let pattern = SpdPattern::new(3 * a.block_order(), &positions).map_err(FairError::Singular)?;
+    let factor = pattern.factor(&values).map_err(FairError::Singular)?;
+    let mut solution = factor.solve_many(rhs, columns);
+    for _ in 0..3 {
+        let r: Vec<f64> = rhs
+            .iter()
+            .zip(apply(a, &solution, columns))
+            .map(|(b, ax)| b - ax)
+            .collect();
+        if norm(&r) <= 1e-13 * norm(rhs) {
+            break;
+        }
+        let correction = factor.solve_many(&r, columns);
+        for (x, d) in solution.iter_mut().zip(&correction) {
+            *x += d;
+        }
+    }
+    Ok(solution)
+}
+
+/// ‖A x − b‖ / ‖b‖ over all columns.
+fn residual(a: &SymmetricBlocks, x: &[f64], rhs: &[f64], columns: usize) -> f64 {
+    let diff: Vec<f64> = apply(a, x, columns)
+        .iter()
+        .zip(rhs)
+        .map(|(ax, b)| ax - b)
+        .collect();
+    norm(&diff) / norm(rhs).max(1e-300)
+}
+
+/// Conjugate gradients for all columns, with the most steps a column took; `None` when a
+/// diagonal block is not positive definite or a column does not converge.
+fn iterate(a: &SymmetricBlocks, rhs: &[f64], columns: usize) -> Option<(Vec<f64>, usize)> {
+    let preconditioner = BlockJacobi::new(a)?;
+    let stop = Stopping {
+        relative_residual: ITERATIVE_RESIDUAL,
+        max_steps: ITERATIVE_MAX_STEPS,
+    };
+    let out = conjugate_gradient(a, &preconditioner, rhs, columns, &stop);
+    let steps = out.iter().map(|c| c.steps).max().unwrap_or(0);
+    out.iter()
+        .all(|c| c.converged(&stop))
+        .then(|| (out.into_iter().flat_map(|c| c.solution).collect(), steps))
+}
+
+/// A x for `columns` vectors stored one after the other.
+fn apply(a: &SymmetricBlocks, x: &[f64], columns: usize) -> Vec<f64> {
+    let n = 3 * a.block_order();
+    let xi: Vec<f64> = (0..n * columns)
+        .map(|k| x[(k % columns) * n + k / columns])
+        .collect();
+    let mut yi = vec![0.0; n * columns];
+    a.multiply_interleaved(&xi, &mut yi, columns);
+    (0..n * columns)
+        .map(|k| yi[(k % n) * columns + k / n])
+        .collect()
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ pub mod spline;
 pub use basis::{PsBasis, SubLocation};
 pub use design::Degenerate;
 pub use energy::{Energy, PieceHessian};
-pub use fair::{FairError, FairOptions, Faired, fair};
+pub use fair::{FairError, FairOptions, FairSolver, Faired, fair};
 pub use nurps::Nurps;
 pub use ps_triangles::{PsTriangleChoice, PsTriangleQuality};
 pub use refinement::{PsRefinement, SplitRule};

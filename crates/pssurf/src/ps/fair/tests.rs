@@ -185,3 +185,45 @@ fn bad_requests_are_refused() {
         Err(FairError::NoInterior)
     ));
 }
+
+/// The iterative solve (used from [`ITERATIVE_FROM_WEIGHT`] on) and the factorisation agree
+/// on the same normal equations to 1e-10 relative, for every kind and several weights; the
+/// iteration is the one `fair` chooses there.
+#[test]
+fn conjugate_gradients_agree_with_the_factorisation() {
+    for (name, s) in noisy(1802) {
+        let basis = s.ps_basis().unwrap();
+        let q = basis.energy_matrix(Energy::HessianJumps);
+        let tri = basis.triangulation();
+        for weight in [ITERATIVE_FROM_WEIGHT, 0.1, 10.0] {
+            let a = interior_system(&q, tri, weight);
+            let m = 3 * a.block_order();
+            let mut r = rng(7);
+            let rhs: Vec<f64> = (0..2 * m).map(|_| uniform(&mut r, -1.0, 1.0)).collect();
+            let (x, steps) = iterate(&a, &rhs, 2).expect("converges");
+            let direct = factor_and_solve(&a, &rhs, 2).unwrap();
+            let err = norm(
+                &x.iter()
+                    .zip(&direct)
+                    .map(|(a, b)| a - b)
+                    .collect::<Vec<_>>(),
+            );
+            assert!(err <= 1e-10 * norm(&direct), "{name} w={weight}: {err:e}");
+            // (The norms are summed in another order than the iteration's: allow for that.)
+            let res = residual(&a, &x, &rhs, 2);
+            assert!(
+                res <= ITERATIVE_RESIDUAL * (1.0 + 1e-9),
+                "{name} w={weight}: {res:e}"
+            );
+            assert!(steps > 0 && steps < ITERATIVE_MAX_STEPS);
+            let (_, _, solver) = solve(&a, &rhs, 2, weight).unwrap();
+            assert!(
+                matches!(solver, FairSolver::ConjugateGradient { .. }),
+                "{name}"
+            );
+        }
+        let a = interior_system(&q, tri, 0.0);
+        let (_, _, solver) = solve(&a, &vec![1.0; 3 * a.block_order()], 1, 0.0).unwrap();
+        assert_eq!(solver, FairSolver::Cholesky, "{name}: weight 0");
+    }
+}
