@@ -108,32 +108,40 @@ pub struct TableSink<'w> {
     w: &'w mut dyn Write,
     format: Format,
     width: usize,
+    /// The column of the next number (CSV lines may span chunks).
+    column: usize,
     text: String,
     bytes: Vec<u8>,
 }
 
 impl TableSink<'_> {
-    /// Appends rows (row-major, `width` numbers each).
+    /// Appends numbers row by row (`width` to a row; a chunk need not end a row).
     pub fn rows(&mut self, data: &[f64]) -> Result<()> {
         match self.format {
             Format::Csv => {
                 use std::fmt::Write as _;
-                for row in data.chunks(self.width) {
-                    self.text.clear();
-                    for (j, v) in row.iter().enumerate() {
-                        if j > 0 {
-                            self.text.push(',');
-                        }
-                        // Shortest round-trip representation; NaN as `nan`.
-                        if v.is_nan() {
-                            self.text.push_str("nan");
-                        } else {
-                            let _ = write!(self.text, "{v:?}");
-                        }
+                self.text.clear();
+                for v in data {
+                    if self.column > 0 {
+                        self.text.push(',');
                     }
-                    self.text.push('\n');
-                    self.w.write_all(self.text.as_bytes())?;
+                    // Shortest round-trip representation; NaN as `nan`.
+                    if v.is_nan() {
+                        self.text.push_str("nan");
+                    } else {
+                        let _ = write!(self.text, "{v:?}");
+                    }
+                    self.column += 1;
+                    if self.column == self.width {
+                        self.text.push('\n');
+                        self.column = 0;
+                    }
+                    if self.text.len() >= 1 << 16 {
+                        self.w.write_all(self.text.as_bytes())?;
+                        self.text.clear();
+                    }
                 }
+                self.w.write_all(self.text.as_bytes())?;
             }
             Format::Npy => {
                 self.bytes.clear();
@@ -157,12 +165,39 @@ pub fn write_streamed(
     rows: usize,
     produce: impl FnOnce(&mut TableSink<'_>) -> Result<()>,
 ) -> Result<()> {
+    write_table(path, Some(columns), [rows, columns.len()], produce)
+}
+
+/// Writes one number per grid point as a raster of `ny` rows of `nx` numbers (v outer, u
+/// inner): a 2-D `.npy` array of shape (ny, nx), or CSV lines of `nx` numbers without a
+/// header; `produce` feeds the numbers in grid order, in chunks.
+pub fn write_raster(
+    path: Option<&Path>,
+    ny: usize,
+    nx: usize,
+    produce: impl FnOnce(&mut TableSink<'_>) -> Result<()>,
+) -> Result<()> {
+    write_table(path, None, [ny, nx], produce)
+}
+
+/// A table of `shape` (rows, numbers per row), with a CSV header line when `header` names the
+/// columns.
+fn write_table(
+    path: Option<&Path>,
+    header: Option<&[String]>,
+    [rows, width]: [usize; 2],
+    produce: impl FnOnce(&mut TableSink<'_>) -> Result<()>,
+) -> Result<()> {
     let format = Format::of(path);
     let run = |w: &mut dyn Write| -> Result<()> {
         match format {
-            Format::Csv => writeln!(w, "{}", columns.join(","))?,
+            Format::Csv => {
+                if let Some(columns) = header {
+                    writeln!(w, "{}", columns.join(","))?
+                }
+            }
             Format::Npy => {
-                let shape = [rows as u64, columns.len() as u64];
+                let shape = [rows as u64, width as u64];
                 let mut header = Vec::new();
                 npyz::WriteOptions::<f64>::new()
                     .default_dtype()
@@ -175,7 +210,8 @@ pub fn write_streamed(
         let mut sink = TableSink {
             w,
             format,
-            width: columns.len(),
+            width,
+            column: 0,
             text: String::new(),
             bytes: Vec::new(),
         };

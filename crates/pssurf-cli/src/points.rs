@@ -8,7 +8,7 @@ use nalgebra::Point2;
 use pssurf::surface::{ParametricSurface, SurfaceJet, fill_rows};
 
 use crate::budget::{Estimate, base_memory, count, mul};
-use crate::output::write_streamed;
+use crate::output::{write_raster, write_streamed};
 use crate::table::Table;
 
 /// A regular grid of NX × NY points over the domain's bounding box, written `NXxNY`.
@@ -195,6 +195,68 @@ fn table_estimate(
     }
 }
 
+/// Which of a table's columns are written, and how.
+pub struct TableLayout {
+    /// The columns written, by index into the full table's columns, in this order.
+    pub select: Vec<usize>,
+    /// Write the single selected column of a grid as an NY × NX raster.
+    pub raster: bool,
+}
+
+impl TableLayout {
+    /// Every column, as a table.
+    pub fn all(width: usize) -> Self {
+        TableLayout {
+            select: (0..width).collect(),
+            raster: false,
+        }
+    }
+
+    /// The columns named in `names` (case-insensitive, in that order) out of `columns`, as a
+    /// table or (with `raster`) as the raster of one column over a grid.
+    pub fn choose(
+        columns: &[String],
+        names: Option<&[String]>,
+        raster: bool,
+        points: &Points,
+        outside: Outside,
+    ) -> Result<Self> {
+        let select = match names {
+            None => (0..columns.len()).collect(),
+            Some(names) => names
+                .iter()
+                .map(|name| {
+                    columns
+                        .iter()
+                        .position(|c| c.eq_ignore_ascii_case(name.trim()))
+                        .ok_or_else(|| {
+                            anyhow::anyhow!(
+                                "--columns: there is no column `{}` (choose from {})",
+                                crate::table::short(name),
+                                columns.join(",")
+                            )
+                        })
+                })
+                .collect::<Result<Vec<usize>>>()?,
+        };
+        if select.is_empty() {
+            bail!("--columns: name at least one column");
+        }
+        if raster {
+            if !matches!(points, Points::Grid { .. }) {
+                bail!("--raster needs --grid");
+            }
+            if select.len() != 1 {
+                bail!("--raster writes one column: choose it with --columns (e.g. --columns z)");
+            }
+            if outside == Outside::Skip {
+                bail!("--raster keeps every grid point: use --outside nan or error");
+            }
+        }
+        Ok(TableLayout { select, raster })
+    }
+}
+
 /// Evaluates a surface at the points and writes a table whose columns are `u, v` followed by
 /// what `fill` writes from each point's jet (`columns.len() − 2` numbers). Points outside the
 /// domain are handled by `outside`. The table is produced in chunks (evaluated in parallel)
@@ -208,9 +270,24 @@ pub fn evaluate_table<S: ParametricSurface>(
     output: Option<&Path>,
     fill: impl Fn(&SurfaceJet, &mut [f64]) + Sync,
 ) -> Result<()> {
+    let layout = TableLayout::all(columns.len());
+    evaluate_table_as(surface, points, columns, &layout, outside, output, fill)
+}
+
+/// [`evaluate_table`] writing only the columns `layout` selects, as a table or a raster.
+pub fn evaluate_table_as<S: ParametricSurface>(
+    surface: &S,
+    points: &Points,
+    columns: &[String],
+    layout: &TableLayout,
+    outside: Outside,
+    output: Option<&Path>,
+    fill: impl Fn(&SurfaceJet, &mut [f64]) + Sync,
+) -> Result<()> {
     const CHUNK: usize = 1 << 16;
     let width = columns.len();
-    table_estimate(points, width, outside, output).check()?;
+    let select = &layout.select;
+    table_estimate(points, select.len(), outside, output).check()?;
     // One extra column per row flags points outside the domain.
     let wide = width + 1;
     let n = points.len();
@@ -246,12 +323,24 @@ pub fn evaluate_table<S: ParametricSurface>(
         for start in (0..n).step_by(CHUNK) {
             chunk(start, &mut pts, &mut buf);
             for row in buf.chunks(wide).filter(|r| r[width] == 0.0) {
-                kept.extend_from_slice(&row[..width]);
+                kept.extend(select.iter().map(|&c| row[c]));
             }
         }
     }
-    let total = if skipping { kept.len() / width } else { n };
-    write_streamed(output, columns, total, |sink| {
+    let total = if skipping {
+        kept.len() / select.len()
+    } else {
+        n
+    };
+    let names: Vec<String> = select.iter().map(|&c| columns[c].clone()).collect();
+    let write =
+        |produce: &mut dyn FnMut(&mut crate::output::TableSink<'_>) -> Result<()>| match points {
+            Points::Grid { size, .. } if layout.raster => {
+                write_raster(output, size.ny, size.nx, produce)
+            }
+            _ => write_streamed(output, &names, total, produce),
+        };
+    write(&mut |sink| {
         if skipping {
             return sink.rows(&kept);
         }
@@ -270,7 +359,7 @@ pub fn evaluate_table<S: ParametricSurface>(
                 if outside == Outside::Skip && row[width] != 0.0 {
                     continue;
                 }
-                rows.extend_from_slice(&row[..width]);
+                rows.extend(select.iter().map(|&c| row[c]));
             }
             sink.rows(&rows)?;
         }

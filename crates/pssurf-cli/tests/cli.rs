@@ -50,6 +50,120 @@ fn fit_info_eval_on_the_example() {
     }
 }
 
+/// `--columns` writes the chosen columns in the chosen order; `--raster` writes z of a grid as
+/// an NY × NX array (SciPy's layout of f(X, Y) on a meshgrid), the same numbers as the table.
+#[test]
+fn eval_writes_chosen_columns_and_rasters() {
+    let d = tmp();
+    let surf = d.path().join("franke.json");
+    ok(&["fit", &example("franke.csv"), "-o", &s(&surf)]);
+    let table = d.path().join("t.npy");
+    ok(&["eval", &s(&surf), "--grid", "7x5", "-o", &s(&table)]);
+    let (_, full) = read_npy(&table);
+    let picked = d.path().join("p.npy");
+    ok(&[
+        "eval",
+        &s(&surf),
+        "--grid",
+        "7x5",
+        "--columns",
+        "z,U",
+        "-o",
+        &s(&picked),
+    ]);
+    let (shape, data) = read_npy(&picked);
+    assert_eq!(shape, vec![35, 2]);
+    for (row, f) in data.chunks(2).zip(full.chunks(5)) {
+        assert_eq!((row[0], row[1]), (f[4], f[0]));
+    }
+    let csv = ok(&["eval", &s(&surf), "--grid", "7x5", "--columns", "v,z"]);
+    assert_eq!(csv.lines().next(), Some("v,z"));
+    // The raster: 5 rows (v) of 7 numbers (u).
+    let raster = d.path().join("r.npy");
+    ok(&[
+        "eval",
+        &s(&surf),
+        "--grid",
+        "7x5",
+        "--columns",
+        "z",
+        "--raster",
+        "-o",
+        &s(&raster),
+    ]);
+    let (shape, data) = read_npy(&raster);
+    assert_eq!(shape, vec![5, 7]);
+    let z: Vec<f64> = full.chunks(5).map(|f| f[4]).collect();
+    assert_eq!(data, z);
+    let lines = ok(&[
+        "eval",
+        &s(&surf),
+        "--grid",
+        "7x5",
+        "--columns",
+        "z",
+        "--raster",
+    ]);
+    let parsed: Vec<Vec<f64>> = lines
+        .lines()
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(parsed.len(), 5);
+    assert!(parsed.iter().all(|r| r.len() == 7));
+    assert_eq!(parsed.concat(), z);
+    // A raster larger than one chunk of evaluation (65,536 points) keeps its lines whole.
+    let big = ok(&[
+        "eval",
+        &s(&surf),
+        "--grid",
+        "301x300",
+        "--columns",
+        "z",
+        "--raster",
+    ]);
+    assert_eq!(big.lines().count(), 300);
+    assert!(big.lines().all(|l| l.split(',').count() == 301));
+    // Refused: unknown columns, several columns or a point list as a raster, skipping.
+    for (args, says) in [
+        (vec!["--grid", "3x3", "--columns", "w"], "no column `w`"),
+        (
+            vec!["--grid", "3x3", "--columns", "x,z", "--raster"],
+            "one column",
+        ),
+        (vec!["--grid", "3x3", "--raster"], "one column"),
+        (
+            vec![
+                "--grid",
+                "3x3",
+                "--columns",
+                "z",
+                "--raster",
+                "--outside",
+                "skip",
+            ],
+            "every grid point",
+        ),
+        (vec!["--grid", "3x3", "--columns", "xu"], "no column `xu`"),
+    ] {
+        let path = s(&surf);
+        let mut all: Vec<&str> = vec!["eval", &path];
+        all.extend(args);
+        let err = fails(&all);
+        assert!(err.contains(says), "{err}");
+    }
+    let pts = write(d.path(), "pts.csv", "u,v\n0.5,0.5\n");
+    let err = fails(&[
+        "eval",
+        &s(&surf),
+        "--at",
+        &s(&pts),
+        "--columns",
+        "z",
+        "--raster",
+    ]);
+    assert!(err.contains("--raster needs --grid"), "{err}");
+}
+
 #[test]
 fn quadratic_data_is_reproduced_through_the_cli() {
     let d = tmp();

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use pssurf::surface::ParametricSurface;
 
-use crate::points::{PointArgs, TableOutputArgs, evaluate_table};
+use crate::points::{PointArgs, TableLayout, TableOutputArgs, evaluate_table_as};
 
 /// Arguments of `pssurf eval`.
 #[derive(clap::Args, Debug)]
@@ -19,6 +19,15 @@ pub struct EvalArgs {
     /// Also write the partial derivatives xu,yu,zu,xv,yv,zv.
     #[arg(long)]
     pub derivatives: bool,
+    /// Write only these columns, in this order, out of u,v,x,y,z (and xu,yu,zu,xv,yv,zv
+    /// with --derivatives), e.g. `--columns z` or `--columns x,y,z`.
+    #[arg(long, value_delimiter = ',', value_name = "NAMES")]
+    pub columns: Option<Vec<String>>,
+    /// With --grid and one column (--columns z): write it as a raster of NY rows of NX
+    /// numbers, v outer and u inner (a 2-D `.npy` array of shape (NY, NX), as SciPy returns
+    /// f(X, Y) on a meshgrid; CSV: one line per grid row, no header).
+    #[arg(long)]
+    pub raster: bool,
     /// Where the table goes and what happens to points outside the domain.
     #[command(flatten)]
     pub table: TableOutputArgs,
@@ -34,10 +43,18 @@ pub fn run(args: &EvalArgs) -> Result<()> {
         columns.extend(["xu", "yu", "zu", "xv", "yv", "zv"].map(String::from));
     }
     let derivatives = args.derivatives;
-    evaluate_table(
+    let layout = TableLayout::choose(
+        &columns,
+        args.columns.as_deref(),
+        args.raster,
+        &pts,
+        args.table.outside,
+    )?;
+    evaluate_table_as(
         &surface,
         &pts,
         &columns,
+        &layout,
         args.table.outside,
         args.table.output.as_deref(),
         |j, row| {
