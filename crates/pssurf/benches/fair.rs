@@ -3,34 +3,15 @@
 //! the thin-plate energy, at about 10k and 100k vertices.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use nalgebra::Point2;
-use pssurf::noise::NoiseKind;
-use pssurf::ps::{Energy, FairOptions, Hermite, fair};
-use pssurf::surface::Surface;
-use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface};
+use pssurf::ps::{Energy, FairOptions, fair};
 use std::hint::black_box;
+
+#[path = "support/noisy_wave.rs"]
+mod noisy_wave;
+use noisy_wave::noisy_wave;
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
-/// A noisy wave on the standard hexagon of side `size`.
-fn noisy_wave(size: i64) -> Surface {
-    let polygon = LatticePolygon::standard(6, size).unwrap();
-    let lattice = Lattice {
-        base: 1.0 / size as f64,
-        origin: Point2::origin(),
-    };
-    let grid = UpsGrid::new(lattice, polygon).unwrap();
-    let ups = graph_surface(grid, GraphKind::Parametric, |p| {
-        let (s, c) = (3.0 * p.x).sin_cos();
-        Hermite {
-            value: 0.3 * s * (2.0 * p.y).cos(),
-            dx: 0.9 * c * (2.0 * p.y).cos(),
-            dy: -0.6 * s * (2.0 * p.y).sin(),
-        }
-    });
-    Surface::from(ups.with_noise(0.001, NoiseKind::Uniform, 5))
-}
 
 fn fairing(c: &mut Criterion) {
     let mut g = c.benchmark_group("fair");

@@ -4,11 +4,10 @@
 
 use std::time::Instant;
 
-use nalgebra::Point2;
-use pssurf::noise::NoiseKind;
-use pssurf::ps::{Energy, FairOptions, Hermite, fair};
-use pssurf::surface::Surface;
-use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface};
+use pssurf::ps::{Energy, FairOptions, fair};
+
+#[path = "../benches/support/noisy_wave.rs"]
+mod noisy_wave;
 
 fn main() {
     let size: i64 = std::env::args()
@@ -19,21 +18,7 @@ fn main() {
         .nth(2)
         .and_then(|a| a.parse().ok())
         .unwrap_or(0.1);
-    let polygon = LatticePolygon::standard(6, size).unwrap();
-    let lattice = Lattice {
-        base: 1.0 / size as f64,
-        origin: Point2::origin(),
-    };
-    let grid = UpsGrid::new(lattice, polygon).unwrap();
-    let ups = graph_surface(grid, GraphKind::Parametric, |p| {
-        let (s, c) = (3.0 * p.x).sin_cos();
-        Hermite {
-            value: 0.3 * s * (2.0 * p.y).cos(),
-            dx: 0.9 * c * (2.0 * p.y).cos(),
-            dy: -0.6 * s * (2.0 * p.y).sin(),
-        }
-    });
-    let s = Surface::from(ups.with_noise(0.001, NoiseKind::Uniform, 5));
+    let s = noisy_wave::noisy_wave(size);
     let basis = s.ps_basis().unwrap().clone();
     println!("{} vertices", basis.triangulation().vertex_count());
     let t = Instant::now();

@@ -114,7 +114,7 @@ pub enum FairError {
 /// The weight from which the normal equations are solved by conjugate gradients (block
 /// Jacobi preconditioned) instead of a sparse Cholesky factorisation. The ridge w σ bounds
 /// the smallest eigenvalue away from zero, so the number of steps grows like 1/√w:
-/// measured on the `fair` bench's 100k-vertex hexagon, 71 steps at w = 0.1 and 214 at 0.01
+/// measured on the `fair` bench's 100k-vertex hexagon, 71 steps at w = 0.1 and 203 at 0.01
 /// (docs/performance.md). Below it, and whenever the iteration does not reach
 /// [`ITERATIVE_RESIDUAL`] within [`ITERATIVE_MAX_STEPS`], the factorisation is used.
 pub const ITERATIVE_FROM_WEIGHT: f64 = 1e-2;
