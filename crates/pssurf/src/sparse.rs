@@ -4,6 +4,10 @@
 //! A [`SpdPattern`] is made once from the positions of the entries; it holds the symbolic
 //! factorisation, so systems with the same pattern and new values (the smoothing fit tries
 //! many λ) are factorised numerically only.
+//!
+//! A [`SymmetricBlocks`] matrix (3 × 3 blocks, both triangles, in block rows) is the system
+//! restricted to some vertices, e.g. fairing's interior; well-conditioned ones are solved by
+//! block-Jacobi preconditioned [`conjugate_gradient`]s, the others by Cholesky.
 
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
@@ -12,9 +16,9 @@ use faer::{Mat, Side};
 use thiserror::Error;
 
 mod conjugate_gradient;
-pub use conjugate_gradient::{
-    BlockJacobi, Iterated, Stopping, SymmetricBlocks, conjugate_gradient,
-};
+mod symmetric_blocks;
+pub use conjugate_gradient::{BlockJacobi, Iterated, Stopping, conjugate_gradient};
+pub use symmetric_blocks::SymmetricBlocks;
 
 /// A sparse solve failed.
 #[derive(Clone, Debug, Error, PartialEq)]

@@ -24,9 +24,10 @@ use thiserror::Error;
 
 use super::Energy;
 use crate::sparse::{
-    BlockJacobi, SparseError, SpdPattern, Stopping, SymmetricBlocks, conjugate_gradient,
+    Block3Matrix, BlockJacobi, SparseError, Stopping, SymmetricBlocks, conjugate_gradient,
 };
 use crate::surface::{ControlFreedom, ControlId, ControlNet, ControlPoint, EditError, Surface};
+use crate::triangulation::Triangulation;
 
 /// How to fair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -125,6 +126,12 @@ pub const ITERATIVE_RESIDUAL: f64 = 1e-13;
 /// The steps after which the iteration gives way to the factorisation.
 pub const ITERATIVE_MAX_STEPS: usize = 2000;
 
+/// When the iteration stops: [`ITERATIVE_RESIDUAL`], [`ITERATIVE_MAX_STEPS`].
+const ITERATIVE_STOP: Stopping = Stopping {
+    relative_residual: ITERATIVE_RESIDUAL,
+    max_steps: ITERATIVE_MAX_STEPS,
+};
+
 /// Fairs `s` with its boundary fixed (see the module documentation).
 pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
     if !(opts.weight >= 0.0 && opts.weight <= 1e12) {
@@ -136,15 +143,11 @@ pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
         .clone();
     let tri = basis.triangulation();
     let n = tri.vertex_count();
-    // Interior values: 3 per interior vertex.
-    let mut index = vec![usize::MAX; 3 * n];
-    let mut value_of = Vec::new();
-    for i in (0..n).filter(|&i| !tri.is_boundary_vertex(i)) {
-        for j in 0..3 {
-            index[3 * i + j] = value_of.len();
-            value_of.push(3 * i + j);
-        }
-    }
+    // Interior values: 3 per interior vertex; value 3i + j of interior vertex k is the
+    // unknown 3k + j.
+    let interior = interior_numbering(tri);
+    let value_of: Vec<usize> = (0..3 * n).filter(|&v| interior[v / 3].is_some()).collect();
+    let unknown = |v: usize| interior[v / 3].map(|k| 3 * k as usize + v % 3);
     let m = value_of.len();
     if m == 0 {
         return Err(FairError::NoInterior);
@@ -175,16 +178,16 @@ pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
             rhs[b * m + k] = -g[v / 3][v % 3];
         }
     }
-    let system = interior_system(&q, tri, opts.weight);
-    let (solution, normal_residual, solver) = solve(&system, &rhs, coords.len(), opts.weight)?;
+    let system = interior_system(&q, &interior, opts.weight);
+    let (solution, normal_residual, solver) =
+        solve(&system, &rhs, coords.len(), opts.weight, &ITERATIVE_STOP)?;
     // The new control points.
     let mut changes = Vec::new();
     let mut largest_move = 0.0f64;
     for v in 0..3 * n {
-        let k = index[v];
-        if k == usize::MAX {
+        let Some(k) = unknown(v) else {
             continue;
-        }
+        };
         let mut p = original[v];
         for (b, &c) in coords.iter().enumerate() {
             p.position[c] += solution[b * m + k];
@@ -218,123 +221,74 @@ pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
     })
 }
 
-/// The normal equations' matrix Q_II + w σ I on the interior vertices' values (numbered in
-/// the order of the vertices), σ the mean diagonal of Q_II.
-fn interior_system(
-    q: &crate::sparse::Block3Matrix,
-    tri: &crate::triangulation::Triangulation,
-    weight: f64,
-) -> SymmetricBlocks {
-    let mut keep = vec![None; tri.vertex_count()];
+/// The interior vertices' numbers among the interior vertices (in vertex order), `None` on
+/// the boundary.
+fn interior_numbering(tri: &Triangulation) -> Vec<Option<u32>> {
     let mut next = 0u32;
-    for (i, k) in keep.iter_mut().enumerate() {
-        if !tri.is_boundary_vertex(i) {
-            *k = Some(next);
-            next += 1;
-        }
-    }
+    (0..tri.vertex_count())
+        .map(|i| {
+            (!tri.is_boundary_vertex(i)).then(|| {
+                next += 1;
+                next - 1
+            })
+        })
+        .collect()
+}
+
+/// The normal equations' matrix Q_II + w σ I on the interior vertices' values (`interior`
+/// from [`interior_numbering`]), σ the mean diagonal of Q_II.
+fn interior_system(q: &Block3Matrix, interior: &[Option<u32>], weight: f64) -> SymmetricBlocks {
     let (mut diagonal, mut count) = (0.0, 0usize);
     for (i, j, b) in q.blocks() {
-        if i == j && keep[i].is_some() {
+        if i == j && interior[i].is_some() {
             diagonal += b[0][0] + b[1][1] + b[2][2];
             count += 3;
         }
     }
     let sigma = diagonal / count.max(1) as f64;
     let ridge = weight * if sigma > 0.0 { sigma } else { 1.0 };
-    SymmetricBlocks::restrict(q, &keep, ridge)
+    SymmetricBlocks::restrict(q, interior, ridge)
 }
 
-/// The solutions for `columns` right-hand sides (one after the other) and the relative
-/// residual of the normal equations: by conjugate gradients from [`ITERATIVE_FROM_WEIGHT`]
-/// on, else (or when they do not converge) by Cholesky.
+/// The solutions for `columns` right-hand sides (one after the other), the relative residual
+/// of the normal equations and the solver used: conjugate gradients (stopping at `stop`)
+/// from [`ITERATIVE_FROM_WEIGHT`] on, else (or when they do not converge) Cholesky.
 fn solve(
     a: &SymmetricBlocks,
     rhs: &[f64],
     columns: usize,
     weight: f64,
+    stop: &Stopping,
 ) -> Result<(Vec<f64>, f64, FairSolver), FairError> {
     let (solution, solver) = match (weight >= ITERATIVE_FROM_WEIGHT)
-        .then(|| iterate(a, rhs, columns))
+        .then(|| iterate(a, rhs, columns, stop))
         .flatten()
     {
         Some((x, steps)) => (x, FairSolver::ConjugateGradient { steps }),
-        None => (factor_and_solve(a, rhs, columns)?, FairSolver::Cholesky),
+        None => (
+            a.solve_by_cholesky(rhs, columns)
+                .map_err(FairError::Singular)?,
+            FairSolver::Cholesky,
+        ),
     };
-    let residual = residual(a, &solution, rhs, columns);
+    let residual = a.relative_residual(&solution, rhs, columns);
     Ok((solution, residual, solver))
-}
-
-/// Sparse Cholesky, then iterative refinement with the same factor. With weight 0 the energy
-/// alone is ill-conditioned on meshes with slivers (measured: a residual of 5e-9 on a random
-/// Delaunay triangulation): the refinement brings the normal equations to rounding. With a
-/// positive weight the first solve is already there.
-fn factor_and_solve(
-    a: &SymmetricBlocks,
-    rhs: &[f64],
-    columns: usize,
-) -> Result<Vec<f64>, FairError> {
-    let (positions, values) = a.lower_entries();
-    let pattern = SpdPattern::new(3 * a.block_order(), &positions).map_err(FairError::Singular)?;
-    let factor = pattern.factor(&values).map_err(FairError::Singular)?;
-    let mut solution = factor.solve_many(rhs, columns);
-    for _ in 0..3 {
-        let r: Vec<f64> = rhs
-            .iter()
-            .zip(apply(a, &solution, columns))
-            .map(|(b, ax)| b - ax)
-            .collect();
-        if norm(&r) <= 1e-13 * norm(rhs) {
-            break;
-        }
-        let correction = factor.solve_many(&r, columns);
-        for (x, d) in solution.iter_mut().zip(&correction) {
-            *x += d;
-        }
-    }
-    Ok(solution)
-}
-
-/// ‖A x − b‖ / ‖b‖ over all columns.
-fn residual(a: &SymmetricBlocks, x: &[f64], rhs: &[f64], columns: usize) -> f64 {
-    let diff: Vec<f64> = apply(a, x, columns)
-        .iter()
-        .zip(rhs)
-        .map(|(ax, b)| ax - b)
-        .collect();
-    norm(&diff) / norm(rhs).max(1e-300)
 }
 
 /// Conjugate gradients for all columns, with the most steps a column took; `None` when a
 /// diagonal block is not positive definite or a column does not converge.
-fn iterate(a: &SymmetricBlocks, rhs: &[f64], columns: usize) -> Option<(Vec<f64>, usize)> {
+fn iterate(
+    a: &SymmetricBlocks,
+    rhs: &[f64],
+    columns: usize,
+    stop: &Stopping,
+) -> Option<(Vec<f64>, usize)> {
     let preconditioner = BlockJacobi::new(a)?;
-    let stop = Stopping {
-        relative_residual: ITERATIVE_RESIDUAL,
-        max_steps: ITERATIVE_MAX_STEPS,
-    };
-    let out = conjugate_gradient(a, &preconditioner, rhs, columns, &stop);
+    let out = conjugate_gradient(a, &preconditioner, rhs, columns, stop);
     let steps = out.iter().map(|c| c.steps).max().unwrap_or(0);
     out.iter()
-        .all(|c| c.converged(&stop))
+        .all(|c| c.converged(stop))
         .then(|| (out.into_iter().flat_map(|c| c.solution).collect(), steps))
-}
-
-/// A x for `columns` vectors stored one after the other.
-fn apply(a: &SymmetricBlocks, x: &[f64], columns: usize) -> Vec<f64> {
-    let n = 3 * a.block_order();
-    let xi: Vec<f64> = (0..n * columns)
-        .map(|k| x[(k % columns) * n + k / columns])
-        .collect();
-    let mut yi = vec![0.0; n * columns];
-    a.multiply_interleaved(&xi, &mut yi, columns);
-    (0..n * columns)
-        .map(|k| yi[(k % n) * columns + k / n])
-        .collect()
-}
-
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 #[cfg(test)]

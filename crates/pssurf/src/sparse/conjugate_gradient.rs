@@ -1,165 +1,14 @@
 //! The preconditioned conjugate gradient method for sparse symmetric positive definite
 //! systems over three values per vertex that are well conditioned (a ridge on the diagonal,
 //! as in fairing with a positive weight): a product with the matrix per step instead of a
-//! factorisation whose fill grows faster than the matrix.
-//!
-//! The matrix is held as 3 × 3 blocks in compressed block rows with both triangles
-//! ([`SymmetricBlocks`]), so that its product with vectors runs in parallel over rows
-//! without write conflicts and reads one column index per block; the preconditioner
-//! inverts the diagonal blocks ([`BlockJacobi`]).
+//! factorisation whose fill grows faster than the matrix. The preconditioner inverts the
+//! matrix's 3 × 3 diagonal blocks ([`BlockJacobi`]).
 
 use nalgebra::Matrix3;
 use rayon::prelude::*;
 
-use super::Block3Matrix;
-
-/// Block rows per parallel task in the products.
-const ROWS_PER_TASK: usize = 1024;
-
-/// A 3 × 3 block.
-type Block = [[f64; 3]; 3];
-
-/// A sparse symmetric matrix of 3 × 3 blocks in compressed block rows, both triangles
-/// stored: the system over the three control values of each vertex.
-#[derive(Clone, Debug)]
-pub struct SymmetricBlocks {
-    start: Vec<usize>,
-    cols: Vec<u32>,
-    blocks: Vec<Block>,
-}
-
-impl SymmetricBlocks {
-    /// The rows and columns of `q` of the vertices with `keep[i] = Some(k)`, renumbered k
-    /// (increasing with i), plus `ridge` on the diagonal.
-    pub fn restrict(q: &Block3Matrix, keep: &[Option<u32>], ridge: f64) -> Self {
-        assert_eq!(keep.len(), q.vertex_count(), "one entry per vertex");
-        let order = keep.iter().flatten().count();
-        // Each kept lower block (i, j) goes to row i as it is and to row j transposed.
-        let mut count = vec![0usize; order + 1];
-        for (i, j, _) in q.blocks() {
-            if let (Some(a), Some(b)) = (keep[i], keep[j]) {
-                count[a as usize + 1] += 1;
-                if a != b {
-                    count[b as usize + 1] += 1;
-                }
-            }
-        }
-        for k in 0..order {
-            count[k + 1] += count[k];
-        }
-        let mut next = count.clone();
-        let total = count[order];
-        let mut cols = vec![0u32; total];
-        let mut blocks = vec![[[0.0; 3]; 3]; total];
-        // Blocks come row by row with increasing columns j ≤ i, so each row receives its
-        // lower blocks in order and then (from later rows) its upper blocks in order.
-        for (i, j, block) in q.blocks() {
-            if let (Some(a), Some(b)) = (keep[i], keep[j]) {
-                let (a, b) = (a as usize, b as usize);
-                cols[next[a]] = b as u32;
-                blocks[next[a]] = *block;
-                next[a] += 1;
-                if a != b {
-                    cols[next[b]] = a as u32;
-                    blocks[next[b]] = transpose(block);
-                    next[b] += 1;
-                }
-            }
-        }
-        let mut m = SymmetricBlocks {
-            start: count,
-            cols,
-            blocks,
-        };
-        for k in 0..order {
-            let d = m.diagonal_mut(k);
-            for r in 0..3 {
-                d[r][r] += ridge;
-            }
-        }
-        m
-    }
-
-    /// The number of block rows (vertices).
-    pub fn block_order(&self) -> usize {
-        self.start.len() - 1
-    }
-
-    /// The number of stored blocks (both triangles).
-    pub fn stored(&self) -> usize {
-        self.cols.len()
-    }
-
-    fn row(&self, i: usize) -> (&[u32], &[Block]) {
-        let r = self.start[i]..self.start[i + 1];
-        (&self.cols[r.clone()], &self.blocks[r])
-    }
-
-    fn diagonal_mut(&mut self, i: usize) -> &mut Block {
-        let r = self.start[i]..self.start[i + 1];
-        let k = self.cols[r.clone()]
-            .binary_search(&(i as u32))
-            .expect("every vertex couples with itself");
-        &mut self.blocks[r.start + k]
-    }
-
-    fn diagonal(&self, i: usize) -> &Block {
-        let (c, b) = self.row(i);
-        &b[c.binary_search(&(i as u32))
-            .expect("every vertex couples with itself")]
-    }
-
-    /// The scalar lower-triangle entries (3i + r, 3j + c), for a factorisation.
-    pub fn lower_entries(&self) -> (Vec<(usize, usize)>, Vec<f64>) {
-        let mut pos = Vec::new();
-        let mut val = Vec::new();
-        for i in 0..self.block_order() {
-            let (cols, blocks) = self.row(i);
-            for (&j, b) in cols.iter().zip(blocks) {
-                let j = j as usize;
-                for r in 0..3 {
-                    for c in 0..3 {
-                        if 3 * j + c <= 3 * i + r {
-                            pos.push((3 * i + r, 3 * j + c));
-                            val.push(b[r][c]);
-                        }
-                    }
-                }
-            }
-        }
-        (pos, val)
-    }
-
-    /// y = A x for `columns` vectors stored interleaved (value 3i + r of column c at
-    /// `(3i + r) * columns + c`), in parallel over block rows: one pass over the matrix for
-    /// all columns.
-    pub fn multiply_interleaved(&self, x: &[f64], y: &mut [f64], columns: usize) {
-        let w = columns;
-        let n = 3 * self.block_order();
-        assert_eq!(x.len(), n * w, "three values per vertex and column");
-        assert_eq!(y.len(), n * w, "three values per vertex and column");
-        y.par_chunks_mut(3 * w)
-            .with_min_len(ROWS_PER_TASK)
-            .enumerate()
-            .for_each(|(i, yi)| {
-                yi.fill(0.0);
-                let (cols, blocks) = self.row(i);
-                for (&j, b) in cols.iter().zip(blocks) {
-                    let xj = &x[3 * w * j as usize..3 * w * (j as usize + 1)];
-                    for r in 0..3 {
-                        for c in 0..w {
-                            yi[r * w + c] +=
-                                b[r][0] * xj[c] + b[r][1] * xj[w + c] + b[r][2] * xj[2 * w + c];
-                        }
-                    }
-                }
-            });
-    }
-}
-
-fn transpose(b: &Block) -> Block {
-    std::array::from_fn(|r| std::array::from_fn(|c| b[c][r]))
-}
+use super::SymmetricBlocks;
+use super::symmetric_blocks::{ROWS_PER_TASK, deinterleave, interleave};
 
 /// The block Jacobi preconditioner: the inverses of the 3 × 3 diagonal blocks.
 #[derive(Clone, Debug)]
@@ -269,8 +118,7 @@ pub fn conjugate_gradient(
     let n = 3 * a.block_order();
     assert_eq!(b.len(), n * columns, "n values per column");
     let w = columns;
-    // Interleaved copies: value k of column c at k * w + c.
-    let bi: Vec<f64> = (0..n * w).map(|k| b[(k % w) * n + k / w]).collect();
+    let bi = interleave(b, w);
     let norm_b: Vec<f64> = dots(&bi, &bi, w).into_iter().map(f64::sqrt).collect();
     let target: Vec<f64> = norm_b
         .iter()
@@ -283,8 +131,12 @@ pub fn conjugate_gradient(
     m.apply(&r, &mut z, w);
     let mut p = z.clone();
     let mut rz = dots(&r, &z, w);
-    // A column is active until it converges or breaks down.
-    let mut active: Vec<bool> = norm_b.iter().map(|&nb| nb > 0.0).collect();
+    // A column is active until it converges or breaks down; a zero column is solved by
+    // zero, a non-finite one never.
+    let mut active: Vec<bool> = norm_b
+        .iter()
+        .map(|&nb| nb > 0.0 && nb.is_finite())
+        .collect();
     let mut steps = vec![0usize; w];
     let mut step = 0;
     while step < stop.max_steps && active.iter().any(|&a| a) {
@@ -312,7 +164,7 @@ pub fn conjugate_gradient(
             // Check against the true residual; where the recurrence drifted, continue from
             // the true residual.
             a.multiply_interleaved(&x, &mut ap, w);
-            let mut true_r: Vec<f64> = bi.iter().zip(&ap).map(|(b, a)| b - a).collect();
+            let true_r: Vec<f64> = bi.iter().zip(&ap).map(|(b, a)| b - a).collect();
             let tr = dots(&true_r, &true_r, w);
             let met: Vec<usize> = (0..w)
                 .filter(|&c| active[c] && rr[c].sqrt() <= target[c])
@@ -326,7 +178,6 @@ pub fn conjugate_gradient(
                     }
                 }
             }
-            true_r.clear();
         }
         m.apply(&r, &mut z, w);
         let rz_next = dots(&r, &z, w);
@@ -352,14 +203,15 @@ pub fn conjugate_gradient(
         let d: Vec<f64> = bi.iter().zip(&ap).map(|(b, a)| b - a).collect();
         dots(&d, &d, w)
     };
+    let x = deinterleave(&x, w);
     (0..w)
         .map(|c| Iterated {
-            solution: (0..n).map(|k| x[k * w + c]).collect(),
+            solution: x[c * n..(c + 1) * n].to_vec(),
             steps: steps[c],
-            relative_residual: if norm_b[c] > 0.0 {
-                res[c].sqrt() / norm_b[c]
-            } else {
+            relative_residual: if norm_b[c] == 0.0 {
                 0.0
+            } else {
+                res[c].sqrt() / norm_b[c] // NaN for a non-finite column: not converged
             },
         })
         .collect()
@@ -381,90 +233,9 @@ fn update(v: &mut [f64], d: &[f64], alpha: &[f64], sign: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sparse::ElementMatrix;
+    use crate::sparse::symmetric_blocks::tests::{random_blocks, restricted};
     use crate::test_util::*;
-    use nalgebra::{DMatrix, DVector};
-
-    /// A random positive semi-definite block matrix over `n` vertices (sums of element
-    /// outer products) and its dense form.
-    fn random_blocks(n: usize, seed: u64) -> (Block3Matrix, DMatrix<f64>) {
-        let mut r = rng(seed);
-        let elements: Vec<Vec<usize>> = (0..2 * n)
-            .map(|_| {
-                let mut v: Vec<usize> = (0..3)
-                    .map(|_| (uniform(&mut r, 0.0, n as f64) as usize).min(n - 1))
-                    .collect();
-                v.sort_unstable();
-                v.dedup();
-                v
-            })
-            .collect();
-        let mut q = Block3Matrix::with_pattern(n, |i, out| {
-            for e in elements.iter().filter(|e| e.contains(&i)) {
-                out.extend(e.iter().map(|&v| v as u32));
-            }
-        });
-        let mut dense = DMatrix::<f64>::zeros(3 * n, 3 * n);
-        for e in &elements {
-            let k = 3 * e.len();
-            let v: Vec<f64> = (0..k).map(|_| uniform(&mut r, -1.0, 1.0)).collect();
-            let mut local: ElementMatrix = [[0.0; 12]; 12];
-            for a in 0..k {
-                for b in 0..k {
-                    local[a][b] = v[a] * v[b];
-                    dense[(3 * e[a / 3] + a % 3, 3 * e[b / 3] + b % 3)] += v[a] * v[b];
-                }
-            }
-            q.add_element(e, &local);
-        }
-        (q, dense)
-    }
-
-    /// The dense matrix of the kept vertices plus the ridge.
-    fn restricted(dense: &DMatrix<f64>, kept: &[usize], ridge: f64) -> DMatrix<f64> {
-        let idx: Vec<usize> = kept
-            .iter()
-            .flat_map(|&i| (0..3).map(move |r| 3 * i + r))
-            .collect();
-        DMatrix::from_fn(idx.len(), idx.len(), |a, b| {
-            dense[(idx[a], idx[b])] + if a == b { ridge } else { 0.0 }
-        })
-    }
-
-    #[test]
-    fn restricted_blocks_multiply_and_flatten_like_the_dense_matrix() {
-        let n = 40;
-        let (q, dense) = random_blocks(n, 7);
-        // Every third vertex dropped.
-        let kept: Vec<usize> = (0..n).filter(|i| i % 3 != 1).collect();
-        let mut keep = vec![None; n];
-        for (k, &i) in kept.iter().enumerate() {
-            keep[i] = Some(k as u32);
-        }
-        let a = SymmetricBlocks::restrict(&q, &keep, 0.75);
-        let d = restricted(&dense, &kept, 0.75);
-        let m = d.nrows();
-        let mut r = rng(8);
-        let x: Vec<f64> = (0..3 * m).map(|_| uniform(&mut r, -1.0, 1.0)).collect();
-        let mut y = vec![0.0; 3 * m];
-        a.multiply_interleaved(&x, &mut y, 3);
-        for c in 0..3 {
-            let yd = &d * DVector::from_fn(m, |k, _| x[3 * k + c]);
-            for i in 0..m {
-                assert!((y[3 * i + c] - yd[i]).abs() < 1e-13, "{c} {i}");
-            }
-        }
-        let (pos, val) = a.lower_entries();
-        let mut rebuilt = DMatrix::<f64>::zeros(m, m);
-        for (&(i, j), v) in pos.iter().zip(&val) {
-            assert!(i >= j);
-            rebuilt[(i, j)] += v;
-            if i != j {
-                rebuilt[(j, i)] += v;
-            }
-        }
-        assert!((rebuilt - d).abs().max() < 1e-13);
-    }
+    use nalgebra::DVector;
 
     #[test]
     fn solves_random_spd_systems_to_the_requested_residual() {
@@ -517,6 +288,31 @@ mod tests {
                     assert!(col.solution.iter().all(|&v| v == 0.0));
                 }
             }
+        }
+    }
+
+    #[test]
+    fn a_non_finite_right_hand_side_never_converges() {
+        let (q, _) = random_blocks(6, 4);
+        let keep: Vec<Option<u32>> = (0..6).map(Some).collect();
+        let a = SymmetricBlocks::restrict(&q, &keep, 0.5);
+        let m = BlockJacobi::new(&a).unwrap();
+        let stop = Stopping {
+            relative_residual: 1e-12,
+            max_steps: 50,
+        };
+        for bad in [f64::NAN, f64::INFINITY, 1e300] {
+            let mut b = vec![1.0; 2 * 18];
+            b[20] = bad;
+            let out = conjugate_gradient(&a, &m, &b, 2, &stop);
+            assert!(out[0].converged(&stop), "a finite column still converges");
+            // 1e300 squares to infinity in the norm: refused like NaN and infinity.
+            assert!(
+                !out[1].converged(&stop),
+                "{bad}: {}",
+                out[1].relative_residual
+            );
+            assert_eq!(out[1].steps, 0);
         }
     }
 

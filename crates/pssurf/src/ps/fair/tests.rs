@@ -188,42 +188,54 @@ fn bad_requests_are_refused() {
 
 /// The iterative solve (used from [`ITERATIVE_FROM_WEIGHT`] on) and the factorisation agree
 /// on the same normal equations to 1e-10 relative, for every kind and several weights; the
-/// iteration is the one `fair` chooses there.
+/// iteration is the one `fair` chooses there, the factorisation below it and whenever the
+/// iteration does not converge.
 #[test]
 fn conjugate_gradients_agree_with_the_factorisation() {
     for (name, s) in noisy(1802) {
         let basis = s.ps_basis().unwrap();
         let q = basis.energy_matrix(Energy::HessianJumps);
-        let tri = basis.triangulation();
+        let interior = interior_numbering(basis.triangulation());
         for weight in [ITERATIVE_FROM_WEIGHT, 0.1, 10.0] {
-            let a = interior_system(&q, tri, weight);
+            let a = interior_system(&q, &interior, weight);
             let m = 3 * a.block_order();
             let mut r = rng(7);
             let rhs: Vec<f64> = (0..2 * m).map(|_| uniform(&mut r, -1.0, 1.0)).collect();
-            let (x, steps) = iterate(&a, &rhs, 2).expect("converges");
-            let direct = factor_and_solve(&a, &rhs, 2).unwrap();
-            let err = norm(
-                &x.iter()
-                    .zip(&direct)
-                    .map(|(a, b)| a - b)
-                    .collect::<Vec<_>>(),
+            let (x, steps) = iterate(&a, &rhs, 2, &ITERATIVE_STOP).expect("converges");
+            let direct = a.solve_by_cholesky(&rhs, 2).unwrap();
+            let norm = |v: &[f64]| v.iter().map(|t| t * t).sum::<f64>().sqrt();
+            let diff: Vec<f64> = x.iter().zip(&direct).map(|(a, b)| a - b).collect();
+            assert!(
+                norm(&diff) <= 1e-10 * norm(&direct),
+                "{name} w={weight}: {:e}",
+                norm(&diff)
             );
-            assert!(err <= 1e-10 * norm(&direct), "{name} w={weight}: {err:e}");
             // (The norms are summed in another order than the iteration's: allow for that.)
-            let res = residual(&a, &x, &rhs, 2);
+            let res = a.relative_residual(&x, &rhs, 2);
             assert!(
                 res <= ITERATIVE_RESIDUAL * (1.0 + 1e-9),
                 "{name} w={weight}: {res:e}"
             );
             assert!(steps > 0 && steps < ITERATIVE_MAX_STEPS);
-            let (_, _, solver) = solve(&a, &rhs, 2, weight).unwrap();
+            let (_, _, solver) = solve(&a, &rhs, 2, weight, &ITERATIVE_STOP).unwrap();
+            assert_eq!(solver, FairSolver::ConjugateGradient { steps }, "{name}");
+            // An iteration cut short gives way to the factorisation, with the same answer.
+            let short = Stopping {
+                max_steps: 2,
+                ..ITERATIVE_STOP
+            };
+            let (y, residual, solver) = solve(&a, &rhs, 2, weight, &short).unwrap();
+            assert_eq!(solver, FairSolver::Cholesky, "{name} w={weight}: cut short");
+            let diff: Vec<f64> = y.iter().zip(&direct).map(|(a, b)| a - b).collect();
             assert!(
-                matches!(solver, FairSolver::ConjugateGradient { .. }),
-                "{name}"
+                norm(&diff) <= 1e-13 * norm(&direct),
+                "{name} w={weight}: cut short"
             );
+            assert!(residual <= 1e-13, "{name} w={weight}: {residual:e}");
         }
-        let a = interior_system(&q, tri, 0.0);
-        let (_, _, solver) = solve(&a, &vec![1.0; 3 * a.block_order()], 1, 0.0).unwrap();
+        let a = interior_system(&q, &interior, 0.0);
+        let ones = vec![1.0; 3 * a.block_order()];
+        let (_, _, solver) = solve(&a, &ones, 1, 0.0, &ITERATIVE_STOP).unwrap();
         assert_eq!(solver, FairSolver::Cholesky, "{name}: weight 0");
     }
 }
