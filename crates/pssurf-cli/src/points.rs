@@ -242,6 +242,15 @@ impl TableLayout {
         if select.is_empty() {
             bail!("--columns: name at least one column");
         }
+        if let Some((k, _)) = select
+            .iter()
+            .enumerate()
+            .find(|&(k, c)| select[..k].contains(c))
+        {
+            // (A table with a repeated column name is one that `Table::read` refuses.)
+            let name = names.map_or("", |n| n[k].trim());
+            bail!("--columns: `{}` is named twice", crate::table::short(name));
+        }
         if raster {
             if !matches!(points, Points::Grid { .. }) {
                 bail!("--raster needs --grid");

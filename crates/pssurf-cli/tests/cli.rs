@@ -55,55 +55,31 @@ fn fit_info_eval_on_the_example() {
 #[test]
 fn eval_writes_chosen_columns_and_rasters() {
     let d = tmp();
-    let surf = d.path().join("franke.json");
-    ok(&["fit", &example("franke.csv"), "-o", &s(&surf)]);
-    let table = d.path().join("t.npy");
-    ok(&["eval", &s(&surf), "--grid", "7x5", "-o", &s(&table)]);
-    let (_, full) = read_npy(&table);
-    let picked = d.path().join("p.npy");
-    ok(&[
-        "eval",
-        &s(&surf),
-        "--grid",
-        "7x5",
-        "--columns",
-        "z,U",
-        "-o",
-        &s(&picked),
-    ]);
-    let (shape, data) = read_npy(&picked);
+    let surf = s(&d.path().join("franke.json"));
+    ok(&["fit", &example("franke.csv"), "-o", &surf]);
+    // `pssurf eval SURF --grid GRID ARGS…`.
+    fn eval<'a>(surf: &'a str, grid: &'a str, rest: &[&'a str]) -> Vec<&'a str> {
+        [&["eval", surf, "--grid", grid][..], rest].concat()
+    }
+    let npy = |name: &str, grid: &str, extra: &[&str]| {
+        let path = s(&d.path().join(name));
+        ok(&eval(&surf, grid, &[extra, &["-o", &path][..]].concat()));
+        read_npy(Path::new(&path))
+    };
+    let (_, full) = npy("t.npy", "7x5", &[]);
+    let (shape, data) = npy("p.npy", "7x5", &["--columns", "z,U"]);
     assert_eq!(shape, vec![35, 2]);
     for (row, f) in data.chunks(2).zip(full.chunks(5)) {
         assert_eq!((row[0], row[1]), (f[4], f[0]));
     }
-    let csv = ok(&["eval", &s(&surf), "--grid", "7x5", "--columns", "v,z"]);
+    let csv = ok(&eval(&surf, "7x5", &["--columns", "v,z"]));
     assert_eq!(csv.lines().next(), Some("v,z"));
     // The raster: 5 rows (v) of 7 numbers (u).
-    let raster = d.path().join("r.npy");
-    ok(&[
-        "eval",
-        &s(&surf),
-        "--grid",
-        "7x5",
-        "--columns",
-        "z",
-        "--raster",
-        "-o",
-        &s(&raster),
-    ]);
-    let (shape, data) = read_npy(&raster);
+    let (shape, data) = npy("r.npy", "7x5", &["--columns", "z", "--raster"]);
     assert_eq!(shape, vec![5, 7]);
     let z: Vec<f64> = full.chunks(5).map(|f| f[4]).collect();
     assert_eq!(data, z);
-    let lines = ok(&[
-        "eval",
-        &s(&surf),
-        "--grid",
-        "7x5",
-        "--columns",
-        "z",
-        "--raster",
-    ]);
+    let lines = ok(&eval(&surf, "7x5", &["--columns", "z", "--raster"]));
     let parsed: Vec<Vec<f64>> = lines
         .lines()
         .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
@@ -112,55 +88,28 @@ fn eval_writes_chosen_columns_and_rasters() {
     assert!(parsed.iter().all(|r| r.len() == 7));
     assert_eq!(parsed.concat(), z);
     // A raster larger than one chunk of evaluation (65,536 points) keeps its lines whole.
-    let big = ok(&[
-        "eval",
-        &s(&surf),
-        "--grid",
-        "301x300",
-        "--columns",
-        "z",
-        "--raster",
-    ]);
+    let big = ok(&eval(&surf, "301x300", &["--columns", "z", "--raster"]));
     assert_eq!(big.lines().count(), 300);
     assert!(big.lines().all(|l| l.split(',').count() == 301));
-    // Refused: unknown columns, several columns or a point list as a raster, skipping.
-    for (args, says) in [
-        (vec!["--grid", "3x3", "--columns", "w"], "no column `w`"),
+    // Refused: unknown or repeated columns (a table our own reader would refuse), several
+    // columns or a point list as a raster, skipping points of a raster.
+    for (extra, says) in [
+        (&["--columns", "w"][..], "no column `w`"),
+        (&["--columns", "xu"], "no column `xu`"),
+        (&["--columns", "z,x,Z"], "`Z` is named twice"),
+        (&["--columns", ""], "no column ``"),
+        (&["--columns", "x,z", "--raster"], "one column"),
+        (&["--raster"], "one column"),
         (
-            vec!["--grid", "3x3", "--columns", "x,z", "--raster"],
-            "one column",
-        ),
-        (vec!["--grid", "3x3", "--raster"], "one column"),
-        (
-            vec![
-                "--grid",
-                "3x3",
-                "--columns",
-                "z",
-                "--raster",
-                "--outside",
-                "skip",
-            ],
+            &["--columns", "z", "--raster", "--outside", "skip"],
             "every grid point",
         ),
-        (vec!["--grid", "3x3", "--columns", "xu"], "no column `xu`"),
     ] {
-        let path = s(&surf);
-        let mut all: Vec<&str> = vec!["eval", &path];
-        all.extend(args);
-        let err = fails(&all);
-        assert!(err.contains(says), "{err}");
+        let err = fails(&eval(&surf, "3x3", extra));
+        assert!(err.contains(says), "{extra:?}: {err}");
     }
-    let pts = write(d.path(), "pts.csv", "u,v\n0.5,0.5\n");
-    let err = fails(&[
-        "eval",
-        &s(&surf),
-        "--at",
-        &s(&pts),
-        "--columns",
-        "z",
-        "--raster",
-    ]);
+    let pts = s(&write(d.path(), "pts.csv", "u,v\n0.5,0.5\n"));
+    let err = fails(&["eval", &surf, "--at", &pts, "--columns", "z", "--raster"]);
     assert!(err.contains("--raster needs --grid"), "{err}");
 }
 
