@@ -238,12 +238,19 @@ fn is_placed(object: &serde_json::Value) -> bool {
 /// refused: the hole's curves are taken in each surface's own coordinates.
 fn scene_surfaces(path: &Path) -> Result<Vec<(String, Arc<Surface>)>> {
     Ok(match super::info::scene_objects(path)? {
-        Some(objects) => {
+        Some(contents) => {
+            let objects = contents.surfaces;
             let text = crate::table::read_text(path)?;
             let raw: serde_json::Value = serde_json::from_str(&text)?;
             let placed = raw["objects"]
                 .as_array()
-                .map(|a| a.iter().map(is_placed).collect::<Vec<_>>())
+                // The surface objects, in the order the library reads them (meshes aside).
+                .map(|a| {
+                    (a.iter())
+                        .filter(|o| o.get("surface").is_some())
+                        .map(is_placed)
+                        .collect::<Vec<_>>()
+                })
                 .unwrap_or_default();
             if let Some(k) = placed.iter().position(|&p| p) {
                 bail!(

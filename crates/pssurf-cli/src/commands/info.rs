@@ -100,8 +100,8 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     if is_curve_file(&args.surface) {
         return curve_info(args);
     }
-    if let Some(objects) = scene_objects(&args.surface)? {
-        let infos: Vec<Info> = objects
+    if let Some(contents) = scene_objects(&args.surface)? {
+        let infos: Vec<Info> = (contents.surfaces)
             .iter()
             .enumerate()
             .map(|(k, o)| {
@@ -111,13 +111,35 @@ pub fn run(args: &InfoArgs) -> Result<()> {
                 )
             })
             .collect();
+        let meshes: Vec<MeshInfo> = contents.meshes.iter().map(MeshInfo::of).collect();
         if args.json {
-            outln!("{}", serde_json::to_string_pretty(&infos)?)?;
+            if meshes.is_empty() {
+                outln!("{}", serde_json::to_string_pretty(&infos)?)?;
+            } else {
+                let both = serde_json::json!({"surfaces": infos, "meshes": meshes});
+                outln!("{}", serde_json::to_string_pretty(&both)?)?;
+            }
         } else {
-            outln!("scene {}: {} objects", args.surface.display(), infos.len())?;
+            outln!(
+                "scene {}: {} objects",
+                args.surface.display(),
+                infos.len() + meshes.len()
+            )?;
             for info in &infos {
                 outln!()?;
                 print_table(info)?;
+            }
+            for m in &meshes {
+                outln!()?;
+                outln!(
+                    "mesh {}: {} vertices, {} triangles; shown after {} × {} ({} triangles)",
+                    m.name,
+                    m.vertices,
+                    m.triangles,
+                    m.times,
+                    m.scheme,
+                    m.refined_triangles
+                )?;
             }
         }
         return Ok(());
@@ -130,6 +152,30 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         print_table(&info)?;
     }
     Ok(())
+}
+
+/// What a scene's mesh object reports.
+#[derive(serde::Serialize)]
+struct MeshInfo {
+    name: String,
+    vertices: usize,
+    triangles: usize,
+    scheme: &'static str,
+    times: u32,
+    refined_triangles: f64,
+}
+
+impl MeshInfo {
+    fn of(m: &pssurf::io::SceneMesh) -> MeshInfo {
+        MeshInfo {
+            name: m.name.clone(),
+            vertices: m.mesh.control.positions.len(),
+            triangles: m.mesh.control.triangles.len(),
+            scheme: m.mesh.scheme.name(),
+            times: m.mesh.times,
+            refined_triangles: m.mesh.triangles_after(),
+        }
+    }
 }
 
 /// What a curve file reports.
@@ -269,10 +315,12 @@ fn plane_normal(pts: &[nalgebra::Vector3<f64>]) -> Option<nalgebra::Vector3<f64>
 /// The surfaces of a surface file (one, named by the file) or of a scene file, with names.
 pub fn load_named_surfaces(path: &std::path::Path) -> Result<Vec<(String, Surface)>> {
     Ok(match scene_objects(path)? {
-        Some(objects) if objects.is_empty() => {
-            anyhow::bail!("{}: the scene has no objects", path.display())
+        Some(c) if c.surfaces.is_empty() => {
+            anyhow::bail!("{}: the scene has no surfaces", path.display())
         }
-        Some(objects) => objects.into_iter().map(|o| (o.name, o.surface)).collect(),
+        Some(c) => (c.surfaces.into_iter())
+            .map(|o| (o.name, o.surface))
+            .collect(),
         None => vec![(
             path.display().to_string(),
             crate::budget::load_surface(path)?,
@@ -283,16 +331,17 @@ pub fn load_named_surfaces(path: &std::path::Path) -> Result<Vec<(String, Surfac
 /// The surfaces of a surface file (one) or of a scene file (every object's).
 pub fn load_surfaces(path: &std::path::Path) -> Result<Vec<Surface>> {
     Ok(match scene_objects(path)? {
-        Some(objects) if objects.is_empty() => {
-            anyhow::bail!("{}: the scene has no objects", path.display())
+        Some(c) if c.surfaces.is_empty() => {
+            anyhow::bail!("{}: the scene has no surfaces", path.display())
         }
-        Some(objects) => objects.into_iter().map(|o| o.surface).collect(),
+        Some(c) => c.surfaces.into_iter().map(|o| o.surface).collect(),
         None => vec![crate::budget::load_surface(path)?],
     })
 }
 
-/// The objects of a scene file (`pssurf import` writes them), or `None` for a surface file.
-pub(crate) fn scene_objects(path: &std::path::Path) -> Result<Option<Vec<pssurf::io::SceneEntry>>> {
+/// The objects of a scene file (`pssurf import` and the application write them), or `None`
+/// for a surface file.
+pub(crate) fn scene_objects(path: &std::path::Path) -> Result<Option<pssurf::io::SceneContents>> {
     use std::io::Read;
     let mut head = Vec::new();
     if let Ok(f) = std::fs::File::open(path) {
@@ -305,7 +354,7 @@ pub(crate) fn scene_objects(path: &std::path::Path) -> Result<Option<Vec<pssurf:
     if !pssurf::io::is_scene(&text) {
         return Ok(None);
     }
-    let objects = pssurf::io::scene_from_json(&text)
+    let objects = pssurf::io::scene_contents_from_json(&text)
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(Some(objects))
 }

@@ -4,11 +4,11 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, anyhow, bail};
-use nalgebra::{Point2, Vector3};
+use nalgebra::Point2;
 use pssurf::io::Durability;
 use pssurf::mesh::TriMesh;
 use pssurf::subdivision::mesh::discrete_curvature;
-use pssurf::subdivision::{Mesh, SurfaceScheme, loop_limit_normals, loop_limit_positions};
+use pssurf::subdivision::{SurfaceScheme, loop_limit_normals, loop_limit_positions};
 use pssurf_viz::{FieldMesh, MeshFormat};
 
 /// What to do with a mesh.
@@ -101,7 +101,7 @@ fn subdivide(args: &SubdivideMeshArgs) -> Result<()> {
         mesh.positions = loop_limit_positions(&mesh)?;
         n
     } else {
-        vertex_normals(&mesh)
+        mesh.vertex_normals()
     };
     let (k, h) = discrete_curvature(&mesh)?;
     let fields = vec![("K".to_string(), k), ("H".to_string(), h)];
@@ -135,21 +135,6 @@ fn subdivide(args: &SubdivideMeshArgs) -> Result<()> {
         args.output.display()
     );
     Ok(())
-}
-
-/// Area-weighted vertex normals.
-fn vertex_normals(mesh: &Mesh) -> Vec<Vector3<f64>> {
-    let mut n = vec![Vector3::zeros(); mesh.positions.len()];
-    for t in &mesh.triangles {
-        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-        let f = (b - a).cross(&(c - a));
-        for &v in t {
-            n[v as usize] += f;
-        }
-    }
-    n.into_iter()
-        .map(|v| v.try_normalize(0.0).unwrap_or_default())
-        .collect()
 }
 
 /// Memory and output of `times` steps: about 4^N (Loop, butterfly) or 3^N (√3) times the

@@ -22,7 +22,8 @@ pub use format::{
 };
 pub use hole_spec::{HOLE_KIND, hole_from_json};
 pub use scene::{
-    SCENE_FORMAT, SCENE_VERSION, SceneEntry, is_scene, scene_from_json, scene_to_json,
+    SCENE_FORMAT, SCENE_VERSION, SceneContents, SceneEntry, SceneMesh, is_scene, mesh_from_value,
+    mesh_to_value, scene_contents_from_json, scene_from_json, scene_to_json,
 };
 
 #[cfg(test)]

@@ -819,3 +819,58 @@ fn binary_headers_claiming_absurd_sizes_are_refused() {
         );
     }
 }
+
+/// A scene with a surface and a mesh object: the mesh's control mesh and subdivision come
+/// back exactly; readers of surfaces see the surface only; bad meshes name their object.
+#[test]
+fn scenes_carry_mesh_objects() {
+    use crate::subdivision::{Mesh, RefinedMesh, SurfaceScheme};
+    let surface = sample_surfaces().remove(0);
+    let mesh = RefinedMesh {
+        control: Mesh::octahedron(),
+        scheme: SurfaceScheme::Sqrt3,
+        times: 2,
+    };
+    let mut value: serde_json::Value = serde_json::from_str(&scene_to_json(&[SceneEntry {
+        name: "s".into(),
+        group: String::new(),
+        surface,
+    }]))
+    .unwrap();
+    let objects = value["objects"].as_array_mut().unwrap();
+    objects.push(serde_json::json!({"name": "m", "mesh": mesh_to_value(&mesh)}));
+    let text = value.to_string();
+    let contents = scene_contents_from_json(&text).unwrap();
+    assert_eq!(contents.surfaces.len(), 1);
+    assert_eq!(contents.meshes.len(), 1);
+    assert_eq!(contents.meshes[0].name, "m");
+    assert_eq!(contents.meshes[0].mesh, mesh);
+    assert_eq!(scene_from_json(&text).unwrap().len(), 1);
+    // Broken meshes and objects with neither or both are refused with the object's index.
+    for (field, words) in [
+        (
+            serde_json::json!({"mesh": {"positions": [[0, 0, 0]], "triangles": [[0, 1, 2]]}}),
+            "objects[1]",
+        ),
+        (
+            serde_json::json!({"mesh": {"positions": [[0, 0, 1e300], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]]}}),
+            "not a finite",
+        ),
+        (
+            serde_json::json!({"mesh": {"positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]], "scheme": "catmull"}}),
+            "unknown scheme",
+        ),
+        (
+            serde_json::json!({"mesh": {"positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]], "times": 40}}),
+            "more than",
+        ),
+        (serde_json::json!({}), "a surface or a mesh"),
+    ] {
+        let mut v = value.clone();
+        v["objects"][1] = field;
+        let e = scene_contents_from_json(&v.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(words) && e.contains("objects[1]"), "{e}");
+    }
+}

@@ -3,10 +3,12 @@
 
 pub mod curves;
 pub mod mesh;
+pub mod refined;
 pub mod surfaces;
 
 pub use curves::{CurveScheme, SubdivisionError, limit_points, subdivide_curve};
 pub use mesh::{Mesh, MeshError, Topology};
+pub use refined::RefinedMesh;
 pub use surfaces::{SurfaceScheme, loop_limit_normals, loop_limit_positions};
 
 #[cfg(test)]

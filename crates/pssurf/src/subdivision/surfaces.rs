@@ -21,6 +21,18 @@ pub enum SurfaceScheme {
 }
 
 impl SurfaceScheme {
+    /// Every scheme.
+    pub const ALL: [SurfaceScheme; 3] = [
+        SurfaceScheme::Loop,
+        SurfaceScheme::Sqrt3,
+        SurfaceScheme::Butterfly,
+    ];
+
+    /// The scheme with this [`SurfaceScheme::name`].
+    pub fn parse(name: &str) -> Option<SurfaceScheme> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+
     /// The name as the CLI spells it.
     pub fn name(self) -> &'static str {
         match self {
