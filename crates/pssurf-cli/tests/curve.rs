@@ -120,9 +120,54 @@ fn the_comb_of_an_arc_is_constant() {
         msg.contains("no such file") && !msg.contains("os error"),
         "{msg}"
     );
-    let poly = s(&write(d.path(), "p.csv", "x,y\n0,0\n1,0\n2,1\n"));
-    let msg = fails(&["curve", &poly, "--comb", "-o", "x.svg"]);
+    let poly = s(&write(d.path(), "p.csv", "x,y\n0,0\n1,0\n1,0\n"));
+    let msg = fails(&["curve", &poly, "--comb", "-o", &s(&d.path().join("x.svg"))]);
     assert_eq!(msg.trim().lines().count(), 1, "{msg}");
+    let png = d.path().join("comb.png");
+    ok_report(&["curve", &arc, "--comb", "-o", &s(&png)]);
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(img.width(), 800);
+    // The curve (black) and the envelope (orange) are drawn.
+    assert!(img.pixels().any(|p| p.0 == [0, 0, 0]));
+    assert!(img.pixels().any(|p| p.0 == [224, 110, 0]));
+}
+
+/// `--comb` on polylines: points on circles (a polygon, and two traced curves in the format
+/// `pssurf trace` writes) have κ = 1/R at every point, exactly up to rounding.
+#[test]
+fn the_comb_of_points_on_a_circle_is_constant() {
+    let d = tmp();
+    let mut polygon = String::from("x,y\n");
+    let mut traced = String::from("curve,u,v,x,y,z\n");
+    for k in 0..40 {
+        let a = 0.1 * k as f64 + 0.01 * (k * k % 7) as f64;
+        polygon.push_str(&format!("{},{}\n", 3.0 * a.cos(), 3.0 * a.sin()));
+        traced.push_str(&format!("0,0,0,{},{},0\n", 3.0 * a.cos(), 3.0 * a.sin()));
+    }
+    for k in 0..20 {
+        let a = 0.2 * k as f64;
+        traced.push_str(&format!("1,0,0,0.5,{},{}\n", 0.5 * a.cos(), 0.5 * a.sin()));
+    }
+    let poly = s(&write(d.path(), "circle.csv", &polygon));
+    let out = d.path().join("comb.csv");
+    ok_report(&["curve", &poly, "--comb", "--scale", "1", "-o", &s(&out)]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("t,x,y,z,kappa"));
+    assert_eq!(text.lines().count(), 41);
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        assert!((v[4] * 3.0 - 1.0).abs() < 1e-12, "{line}");
+    }
+    let curves = s(&write(d.path(), "traced.csv", &traced));
+    ok_report(&["curve", &curves, "--comb", "-o", &s(&out)]);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("curve,t,x,y,z,kappa"));
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let r = if v[0] == 0.0 { 3.0 } else { 0.5 };
+        assert!((v[5] * r - 1.0).abs() < 1e-12, "{line}");
+    }
+    assert_eq!(text.lines().count(), 1 + 40 + 20);
 }
 
 #[test]

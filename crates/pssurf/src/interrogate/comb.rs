@@ -74,6 +74,74 @@ pub fn comb_scale_for(combs: &[Vec<CombTooth>], length: f64) -> f64 {
     if max > 0.0 { length / max } else { 1.0 }
 }
 
+/// The comb of a polyline, a curve known only by its points (a subdivided polygon, a traced
+/// curve written as points): at each point the curvature of the circle through it and its
+/// two neighbours, κ = 2 |a × b| / (|a| |b| |a − b|) with a, b the chords to them (Menger's
+/// curvature, exact for points on a circle), the tooth pointing away from that circle's
+/// centre. An open polyline's end points take the circle of the first (last) three points;
+/// a closed one wraps around. The parameter t is the arc length along the chords. Repeated
+/// consecutive points are passed over; fewer than three distinct points give no teeth.
+pub fn polyline_comb(points: &[Vector3<f64>], closed: bool, scale: f64) -> Vec<CombTooth> {
+    let mut p: Vec<Vector3<f64>> = Vec::with_capacity(points.len());
+    for q in points {
+        if p.last() != Some(q) {
+            p.push(*q);
+        }
+    }
+    if closed && p.len() > 1 && p.first() == p.last() {
+        p.pop();
+    }
+    let n = p.len();
+    if n < 3 {
+        return Vec::new();
+    }
+    let mut t = 0.0;
+    (0..n)
+        .map(|k| {
+            if k > 0 {
+                t += (p[k] - p[k - 1]).norm();
+            }
+            // The three points whose circle gives the curvature at k.
+            let (prev, here, next) = match (closed, k) {
+                (true, _) => ((k + n - 1) % n, k, (k + 1) % n),
+                (false, 0) => (0, 1, 2),
+                (false, k) if k == n - 1 => (n - 3, n - 2, n - 1),
+                (false, k) => (k - 1, k, k + 1),
+            };
+            let (curvature, outward) = circle_through(p[prev], p[here], p[next], p[k]);
+            CombTooth {
+                t,
+                point: p[k],
+                curvature,
+                tip: p[k] + outward * (scale * curvature),
+            }
+        })
+        .collect()
+}
+
+/// The curvature of the circle through a, b, c (0 when they are collinear) and the unit
+/// direction from its centre towards `at` (zero when collinear).
+fn circle_through(
+    a: Vector3<f64>,
+    b: Vector3<f64>,
+    c: Vector3<f64>,
+    at: Vector3<f64>,
+) -> (f64, Vector3<f64>) {
+    let (u, v) = (a - b, c - b);
+    let w = u.cross(&v);
+    let w2 = w.norm_squared();
+    if !(w2 > 0.0) {
+        return (0.0, Vector3::zeros());
+    }
+    let curvature = 2.0 * w.norm() / (u.norm() * v.norm() * (u - v).norm());
+    // The circumcentre: b + (|u|² v − |v|² u) × w / (2 |w|²).
+    let centre = b + (v * u.norm_squared() - u * v.norm_squared()).cross(&w) / (2.0 * w2);
+    let outward = (at - centre)
+        .try_normalize(0.0)
+        .unwrap_or_else(Vector3::zeros);
+    (curvature, outward)
+}
+
 /// The tooth at t from the curve's point and first two derivatives.
 fn tooth(t: f64, [p, d1, d2]: [Vector3<f64>; 3], scale: f64) -> CombTooth {
     let speed2 = d1.norm_squared();
@@ -104,6 +172,46 @@ fn tooth(t: f64, [p, d1, d2]: [Vector3<f64>; 3], scale: f64) -> CombTooth {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Points on a circle of random centre, radius, plane and spacing: every tooth has
+    /// κ = 1/R to 1e-12 and its tip on the circle of radius R + scale/R (outward), open or
+    /// closed; collinear points have none; repeated points are passed over.
+    #[test]
+    fn polyline_combs_of_circles_are_exact() {
+        use crate::test_util::{random_vec3, rng, uniform};
+        let mut rng = rng(31);
+        for case in 0..200 {
+            let r = uniform(&mut rng, 0.01, 100.0);
+            let centre = random_vec3(&mut rng) * 10.0;
+            let e1 = (random_vec3(&mut rng) + Vector3::new(0.0, 0.0, 2.0)).normalize();
+            let e2 = e1.cross(&Vector3::new(0.3, -0.2, 0.9)).normalize();
+            let mut angle: f64 = 0.0;
+            let mut points = Vec::new();
+            while angle < 5.5 {
+                points.push(centre + (e1 * angle.cos() + e2 * angle.sin()) * r);
+                angle += uniform(&mut rng, 0.05, 0.55);
+            }
+            points.insert(2, points[2]);
+            let scale = 0.5 * r * r;
+            for closed in [false, true] {
+                let comb = polyline_comb(&points, closed, scale);
+                assert_eq!(comb.len(), points.len() - 1, "case {case}");
+                for tooth in &comb {
+                    let rel = (tooth.curvature * r - 1.0).abs();
+                    assert!(rel < 1e-12, "case {case}: κR = {}", tooth.curvature * r);
+                    let tip_r = (tooth.tip - centre).norm();
+                    assert!((tip_r - (r + scale / r)).abs() < 1e-12 * (r + scale / r));
+                }
+            }
+        }
+        let line: Vec<Vector3<f64>> = (0..5).map(|k| Vector3::new(k as f64, 2.0, 0.0)).collect();
+        assert!(
+            polyline_comb(&line, false, 1.0)
+                .iter()
+                .all(|t| t.curvature == 0.0 && t.tip == t.point)
+        );
+        assert!(polyline_comb(&line[..2], false, 1.0).is_empty());
+    }
     use crate::test_util::*;
 
     /// The cylinder patch's sides: the base arc has κ = 1/r, the ruling κ = 0, and the
