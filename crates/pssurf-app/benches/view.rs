@@ -89,7 +89,7 @@ fn drag_step(c: &mut Criterion) {
         ),
     ] {
         let mut app = app(mode);
-        let vertices = pssurf_app::edit::vertex_count(&app.doc.scene.objects[0].surface);
+        let vertices = pssurf_app::edit::vertex_count(app.doc.scene.objects[0].surface().unwrap());
         assert!(vertices >= 100_000, "{vertices} vertices");
         let mut renderer = ViewRenderer::new(&device);
         renderer.upload(&device, &queue, &app.runtime.cache.geometry);
@@ -99,7 +99,7 @@ fn drag_step(c: &mut Criterion) {
             b.iter(|| {
                 step += 1;
                 let v = (step * 7_919) % vertices;
-                let mut c = vertex_control(&app.doc.scene.objects[0].surface, v);
+                let mut c = vertex_control(app.doc.scene.objects[0].surface().unwrap(), v);
                 c.points[0].z += 1e-3;
                 app.drag_vertex(0, v, c).expect("edit");
                 renderer.upload(&device, &queue, &app.runtime.cache.geometry);

@@ -7,6 +7,7 @@
 //! settings and the algorithm panels on the right; a status bar below.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use egui::Rect;
 use nalgebra::Point2;
@@ -27,7 +28,7 @@ use crate::panels::{Panel, default_panels};
 use crate::probe::Probe;
 use crate::properties::Properties;
 use crate::runtime::Runtime;
-use crate::scene::{FileKind, Scene, SceneObject};
+use crate::scene::{FileKind, NO_CONTROLS, Scene, SceneObject, Shape};
 use crate::scene_tree::SceneTree;
 use crate::state::ViewState;
 use crate::view_settings::{DisplayPanel, ProbePanel};
@@ -228,9 +229,9 @@ impl App {
     pub fn open(&mut self, path: PathBuf) {
         match Scene::load_file(&path) {
             Ok((scene, kind)) => {
-                // An imported IGES file becomes an untitled scene: saving must not write JSON
-                // over the IGES file.
-                self.doc = if crate::scene::is_iges_path(&path) {
+                // An imported file (IGES, points, a mesh) becomes an untitled scene: saving
+                // must not write JSON over it.
+                self.doc = if crate::scene::is_import_path(&path) {
                     Document::new(scene, None)
                 } else {
                     Document::from_file(scene, path.clone(), kind)
@@ -378,7 +379,8 @@ impl App {
         let mut pieces = Vec::new();
         self.doc.edit("edit control points", |scene| {
             let o = &mut scene.objects[object];
-            pieces = edit::set_vertex_control(o.surface_mut(), vertex, &c)?;
+            let surface = o.surface_mut().ok_or_else(|| NO_CONTROLS.to_string())?;
+            pieces = edit::set_vertex_control(surface, vertex, &c)?;
             Ok::<(), String>(())
         })?;
         self.update_vertex_mesh(object, old, vertex, &pieces);
@@ -397,7 +399,10 @@ impl App {
         let mut result = Ok(Vec::new());
         self.doc.edit_continuing(|scene| {
             let o = &mut scene.objects[object];
-            result = edit::set_vertex_control(o.surface_mut(), vertex, &c);
+            result = match o.surface_mut() {
+                Some(surface) => edit::set_vertex_control(surface, vertex, &c),
+                None => Err(NO_CONTROLS.to_string()),
+            };
             if result.is_err() {
                 // The library changed nothing: the cached meshes stay valid.
                 o.revision = old;
@@ -423,6 +428,7 @@ impl App {
             let o = &mut scene.objects[object];
             pieces = o
                 .surface_mut()
+                .ok_or_else(|| NO_CONTROLS.to_string())?
                 .set_control_points(changes)
                 .map_err(|e| e.to_string())?;
             Ok(())
@@ -615,7 +621,13 @@ impl App {
                 what,
                 surface,
                 status,
-            } => self.replace_surface(object, what, *surface, status),
+            } => self.replace_shape(object, what, Shape::Surface(Arc::new(*surface)), status),
+            Command::ReplaceMesh {
+                object,
+                what,
+                mesh,
+                status,
+            } => self.replace_shape(object, what, Shape::Mesh(mesh), status),
             Command::ReplaceSurfaces {
                 surfaces,
                 what,
@@ -771,18 +783,12 @@ impl App {
         self.pending_frame = Some(FrameTarget::All);
     }
 
-    fn replace_surface(
-        &mut self,
-        object: usize,
-        what: &str,
-        surface: pssurf::surface::Surface,
-        status: String,
-    ) {
+    fn replace_shape(&mut self, object: usize, what: &str, shape: Shape, status: String) {
         if object >= self.doc.scene.objects.len() {
             return;
         }
         let _ = self.doc.edit::<()>(what, |scene| {
-            *scene.objects[object].surface_mut() = surface;
+            scene.objects[object].set_shape(shape);
             Ok(())
         });
         self.status = status;
@@ -800,7 +806,7 @@ impl App {
         }
         let _ = self.doc.edit::<()>(what, |scene| {
             for (object, surface) in surfaces {
-                *scene.objects[object].surface_mut() = *surface;
+                scene.objects[object].set_shape(Shape::Surface(Arc::new(*surface)));
             }
             Ok(())
         });

@@ -4,6 +4,7 @@
 //! is drawing, and every change has one place where it happens (`App::apply`).
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use nalgebra::Point2;
 use pssurf::surface::{ControlId, ControlPoint, Surface, UpsSurface};
@@ -16,7 +17,7 @@ use crate::edit::VertexControl;
 use crate::files::{Answer, Purpose};
 use crate::probe::{Probe, ProbeSettings};
 use crate::runtime::{RegionMark, Runtime};
-use crate::scene::{FileKind, Material, SceneObject, Transform};
+use crate::scene::{FileKind, Material, MeshShape, SceneObject, Transform};
 use crate::state::ViewState;
 
 /// A change to one object's properties (each one undo step).
@@ -181,6 +182,17 @@ pub enum Command {
         /// The status message on success.
         status: String,
     },
+    /// Replace a mesh object's mesh (a new subdivision) as one undoable edit.
+    ReplaceMesh {
+        /// The object's index.
+        object: usize,
+        /// The edit's name for the Edit menu.
+        what: &'static str,
+        /// The new mesh.
+        mesh: Arc<MeshShape>,
+        /// The status message on success.
+        status: String,
+    },
     /// Fit part of the scene into the 3D view.
     Frame(FrameTarget),
     /// Open a scene or surface file, replacing the document (asking first about unsaved
@@ -306,9 +318,19 @@ impl<'a> ViewContext<'a> {
         self.selected().map(|i| &doc.scene.objects[i])
     }
 
+    /// The selected object's surface, unless it is a mesh.
+    pub fn surface(&self) -> Option<&'a Arc<Surface>> {
+        self.object().and_then(|o| o.surface())
+    }
+
+    /// The selected object's mesh, if it is one.
+    pub fn mesh(&self) -> Option<&'a MeshShape> {
+        self.object().and_then(|o| o.mesh_shape())
+    }
+
     /// The selected object's uniform (UPS) form, if it has one.
     pub fn uniform(&self) -> Option<&'a UpsSurface> {
-        self.object().and_then(|o| o.surface.uniform())
+        self.surface().and_then(|s| s.uniform())
     }
 
     /// The probe, if one is set.

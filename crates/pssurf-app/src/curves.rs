@@ -226,6 +226,9 @@ pub struct CurvesState {
     dirty: bool,
 }
 
+/// Why curves are not traced on an object.
+const CURVES_NEED_A_SURFACE: &str = "curves are traced on surfaces, and this object is a mesh";
+
 impl CurvesState {
     /// Traces `request` on object `object` and keeps the result; the summary or the error.
     pub fn add(
@@ -235,7 +238,8 @@ impl CurvesState {
         request: CurveRequest,
     ) -> Result<String, String> {
         let o = scene.objects.get(object).ok_or("no such object")?;
-        let (curves, summary) = trace(&o.surface, &request)?;
+        let surface = o.surface().ok_or(CURVES_NEED_A_SURFACE)?;
+        let (curves, summary) = trace(surface, &request)?;
         self.sets.push(CurveSet {
             object: o.id,
             revision: o.revision,
@@ -256,6 +260,9 @@ impl CurvesState {
     /// After a drag moved control group of object `object` from revision `old`, changing
     /// `pieces`: traces again only the seeded curves that pass through those pieces.
     pub fn edited(&mut self, o: &SceneObject, old: u64, pieces: &[usize]) {
+        let Some(surface) = o.surface() else {
+            return;
+        };
         for set in self
             .sets
             .iter_mut()
@@ -270,10 +277,8 @@ impl CurvesState {
             for c in &mut set.curves {
                 let touched = c.pieces.iter().any(|p| pieces.binary_search(p).is_ok());
                 if let (true, Some((family, seed))) = (touched, c.seed) {
-                    match trace_field_line(o.surface.as_ref(), family, seed, &line_options()) {
-                        Ok(line) => {
-                            *c = traced(&o.surface, line.curve, c.color, Some((family, seed)))
-                        }
+                    match trace_field_line(surface.as_ref(), family, seed, &line_options()) {
+                        Ok(line) => *c = traced(surface, line.curve, c.color, Some((family, seed))),
                         Err(_) => c.curve = SurfaceCurve::default(),
                     }
                 }
@@ -296,7 +301,9 @@ impl CurvesState {
             if o.revision == set.revision {
                 continue;
             }
-            match trace(&o.surface, &set.request) {
+            let traced = (o.surface().ok_or_else(|| CURVES_NEED_A_SURFACE.to_string()))
+                .and_then(|s| trace(s, &set.request));
+            match traced {
                 Ok((curves, summary)) => (set.curves, set.summary) = (curves, summary),
                 Err(e) => (set.curves, set.summary) = (Vec::new(), e),
             }

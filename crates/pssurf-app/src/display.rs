@@ -8,7 +8,7 @@ use nalgebra::{Matrix3, Matrix4, Point3, Vector3};
 use pssurf::interrogate::{
     CurvatureQuantity, sample_patches, sample_pieces, triangles_per_piece, vertices_per_piece,
 };
-use pssurf::surface::{PieceKind, PiecewiseSurface};
+use pssurf::surface::{PieceKind, PiecewiseSurface, Surface};
 use pssurf_viz::colormap::{ColorMap, ColorScale, DataRange};
 use pssurf_viz::plot::{
     Overlays, Polyline, Range, cell_of_piece, cell_overlay, cell_pieces, comb_overlay,
@@ -16,7 +16,7 @@ use pssurf_viz::plot::{
 };
 
 use crate::edit;
-use crate::scene::{Material, SceneObject};
+use crate::scene::{Material, SceneObject, Shape};
 
 /// What colours the surface (saved by its [`ViewMode::key`]).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -310,13 +310,22 @@ impl Legend {
 }
 
 /// The sampling level used for an object (the setting, capped by [`max_level`]).
+/// (0 for a mesh, which is drawn as it is).
 pub fn display_level(o: &SceneObject, settings: &DisplaySettings) -> u32 {
-    settings.level.min(max_level(o.surface.piece_count()))
+    o.surface()
+        .map_or(0, |s| settings.level.min(max_level(s.piece_count())))
 }
 
 /// Samples an object for display, in its material's colour (see [`colorize`]).
 pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
-    let surface = &o.surface;
+    match &o.shape {
+        Shape::Surface(surface) => surface_mesh(o, surface, settings),
+        Shape::Mesh(mesh) => crate::mesh_view::mesh_object_mesh(o, mesh, settings),
+    }
+}
+
+/// Samples a surface object piece by piece.
+fn surface_mesh(o: &SceneObject, surface: &Surface, settings: &DisplaySettings) -> ObjectMesh {
     let level = display_level(o, settings);
     let curvature = matches!(settings.mode, ViewMode::Curvature(_));
     let sampled = sample_patches(surface, level, curvature);
@@ -333,7 +342,7 @@ pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
         .map(|(p, n)| placement.vertex(p, n, o.material.color()))
         .collect();
     let indices: Vec<u32> = sampled.mesh.triangles.iter().flatten().copied().collect();
-    let (lines, layout) = object_lines(o, settings, level, &vertices, &indices);
+    let (lines, layout) = object_lines(o, surface, settings, level, &vertices, &indices);
     ObjectMesh {
         vertices,
         indices,
@@ -348,12 +357,12 @@ pub fn object_mesh(o: &SceneObject, settings: &DisplaySettings) -> ObjectMesh {
 /// shown), then the control net group by group.
 fn object_lines(
     o: &SceneObject,
+    surface: &Surface,
     settings: &DisplaySettings,
     level: u32,
     vertices: &[GpuVertex],
     indices: &[u32],
 ) -> (Vec<LineVertex>, MeshLayout) {
-    let surface = &o.surface;
     let placement = Placement::of(o);
     let overlays = &settings.overlays;
     let kind = surface.piece_kind();
@@ -398,7 +407,7 @@ fn object_lines(
 
 /// Re-samples only `pieces` (the support of control group `group`, which changed: nothing
 /// else moved), recolouring with `paint` in a curvature plot, and rewrites the overlay lines
-/// of their cells and of the group in place. Returns what changed.
+/// of their cells and of the group in place. Returns what changed (nothing for a mesh).
 pub fn update_vertex(
     mesh: &mut ObjectMesh,
     o: &SceneObject,
@@ -407,7 +416,9 @@ pub fn update_vertex(
     pieces: &[usize],
     paint: Option<(&ColorMap, &ColorScale)>,
 ) -> Changed {
-    let surface = &o.surface;
+    let Some(surface) = o.surface() else {
+        return Changed::default();
+    };
     let level = mesh.layout.level;
     let kind = surface.piece_kind();
     let per = vertices_per_piece(kind, level);
@@ -552,13 +563,13 @@ fn write_slot(slot: &mut [LineVertex], lines: &[LineVertex]) {
 }
 
 /// An object's placement applied to points, normals and lines.
-struct Placement {
+pub(crate) struct Placement {
     matrix: Matrix4<f64>,
     rotation: Matrix3<f64>,
 }
 
 impl Placement {
-    fn of(o: &SceneObject) -> Self {
+    pub(crate) fn of(o: &SceneObject) -> Self {
         let matrix = o.transform.matrix();
         Placement {
             rotation: matrix.fixed_view::<3, 3>(0, 0).into_owned(),
@@ -566,7 +577,7 @@ impl Placement {
         }
     }
 
-    fn point(&self, p: &Vector3<f64>) -> [f32; 3] {
+    pub(crate) fn point(&self, p: &Vector3<f64>) -> [f32; 3] {
         self.matrix
             .transform_point(&Point3::from(*p))
             .coords
@@ -574,7 +585,7 @@ impl Placement {
             .into()
     }
 
-    fn vertex(&self, p: &Vector3<f64>, n: &Vector3<f64>, color: [u8; 4]) -> GpuVertex {
+    pub(crate) fn vertex(&self, p: &Vector3<f64>, n: &Vector3<f64>, color: [u8; 4]) -> GpuVertex {
         let n = (self.rotation * n)
             .try_normalize(1e-300)
             .unwrap_or_else(Vector3::zeros);

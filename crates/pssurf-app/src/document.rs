@@ -115,8 +115,7 @@ impl Document {
             }
             _ => None,
         };
-        let vertex =
-            vertex.filter(|&v| object.is_some_and(|o| v < crate::edit::vertex_count(&o.surface)));
+        let vertex = vertex.filter(|&v| object.is_some_and(|o| v < o.vertex_count()));
         if selection.vertex.is_none()
             && selection.object == self.selection.object
             && let Some(o) = object
@@ -215,7 +214,7 @@ impl Document {
         match self.selection.object.map(|i| objects.get(i)) {
             Some(None) => self.selection = Selection::default(),
             Some(Some(o)) => {
-                let groups = crate::edit::vertex_count(&o.surface);
+                let groups = o.vertex_count();
                 if self.selection.vertex.is_some_and(|v| v >= groups) {
                     self.selection.vertex = None;
                 }

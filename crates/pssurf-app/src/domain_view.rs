@@ -158,7 +158,7 @@ impl DomainView {
             return centered_message(&painter, rect, "no object selected");
         };
         let object = &cx.doc.scene.objects[i];
-        let Some(basis) = object.surface.ps_basis() else {
+        let Some(basis) = object.surface().and_then(|s| s.ps_basis()) else {
             return centered_message(&painter, rect, "the domain view shows PS surfaces");
         };
         let (lo, hi) = basis.triangulation().bounds();

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use nalgebra::Point3;
 use pssurf::interrogate::{CurvatureQuantity, sample_patches};
 use pssurf::io::{Durability, atomic_write, atomic_write_bytes};
+use pssurf::mesh::TriMesh;
 use pssurf_viz::{FieldMesh, MeshFormat, write_mesh};
 
 use crate::cache::GeometryCache;
@@ -14,6 +15,7 @@ use crate::command::{Command, ExportKind, ViewContext};
 use crate::display::{DisplaySettings, ViewMode, display_level};
 use crate::document::Document;
 use crate::runtime::Runtime;
+use crate::scene::{MeshShape, Shape};
 use crate::state::ViewState;
 
 /// The dialog's state.
@@ -102,49 +104,51 @@ pub fn export_mesh(
         .filter(|&i| i < doc.scene.objects.len())
         .ok_or("select an object to export")?;
     let o = &doc.scene.objects[i];
-    let level = display_level(o, display);
-    let mut sampled = sample_patches(&o.surface, level, true);
+    let (mut mesh, quantities) = match &o.shape {
+        Shape::Surface(surface) => {
+            let sampled = sample_patches(surface, display_level(o, display), true);
+            let quantities = CurvatureQuantity::ALL.map(|q| sampled.quantity(q));
+            (sampled.mesh, quantities)
+        }
+        Shape::Mesh(m) => mesh_with_fields(m),
+    };
     let m = o.transform.matrix();
     let rotation = m.fixed_view::<3, 3>(0, 0).into_owned() / o.transform.scale;
-    for (p, n) in sampled
-        .mesh
-        .positions
-        .iter_mut()
-        .zip(sampled.mesh.normals.iter_mut())
-    {
+    for (p, n) in mesh.positions.iter_mut().zip(mesh.normals.iter_mut()) {
         *p = m.transform_point(&Point3::from(*p)).coords;
         *n = rotation * *n;
     }
-    let s = o.transform.scale;
-    let fields: Vec<(String, Vec<f64>)> = CurvatureQuantity::ALL
-        .iter()
-        .map(|q| {
-            let power = if *q == CurvatureQuantity::Gaussian {
-                2
-            } else {
-                1
-            };
-            let values = sampled
-                .quantity(*q)
-                .iter()
-                .map(|x| x / s.powi(power))
-                .collect();
-            (q.short_name().to_string(), values)
-        })
-        .collect();
-    // The plot's colours, when the view shows one: the values sampled now, under the scale
+    // The plot's colours, when the view shows one: the values computed now, under the scale
     // that colours the object on screen (so never stale after an edit).
     let colors: Option<Vec<[u8; 3]>> = match display.mode {
         ViewMode::Curvature(q) => cache.scale_of(o.id).map(|scale| {
             let map = crate::display::color_map(display);
-            (sampled.quantity(q).iter())
+            let k = CurvatureQuantity::ALL
+                .iter()
+                .position(|&x| x == q)
+                .unwrap_or(0);
+            (quantities[k].iter())
                 .map(|x| map.at(scale.position(*x)))
                 .collect()
         }),
         _ => None,
     };
+    // Curvatures scale with the placement: 1/length, the Gaussian 1/length².
+    let s = o.transform.scale;
+    let fields: Vec<(String, Vec<f64>)> = (CurvatureQuantity::ALL.iter())
+        .zip(quantities)
+        .map(|(q, values)| {
+            let power = if *q == CurvatureQuantity::Gaussian {
+                2
+            } else {
+                1
+            };
+            let values = values.iter().map(|x| x / s.powi(power)).collect();
+            (q.short_name().to_string(), values)
+        })
+        .collect();
     let mesh = FieldMesh {
-        mesh: &sampled.mesh,
+        mesh: &mesh,
         fields: if format.carries_fields() {
             &fields
         } else {
@@ -159,6 +163,23 @@ pub fn export_mesh(
     .map_err(|e| write_error(path, &e))
 }
 
+/// A mesh object's refined mesh and its discrete curvatures, in the order of
+/// [`CurvatureQuantity::ALL`] (NaN everywhere when the mesh is not manifold).
+fn mesh_with_fields(m: &MeshShape) -> (TriMesh, [Vec<f64>; 5]) {
+    let n = m.refined.positions.len();
+    let quantities = CurvatureQuantity::ALL.map(|q| match &m.curvature {
+        Ok(c) => crate::mesh_view::discrete_quantity(c, q),
+        Err(_) => vec![f64::NAN; n],
+    });
+    let mesh = TriMesh {
+        positions: m.refined.positions.clone(),
+        normals: m.normals.clone(),
+        uvs: vec![nalgebra::Point2::origin(); n],
+        triangles: m.refined.triangles.clone(),
+    };
+    (mesh, quantities)
+}
+
 /// Writes the selected object's surface as a surface file (its own coordinates: the
 /// placement stays in the scene).
 pub fn export_surface(doc: &Document, path: &Path) -> Result<(), String> {
@@ -167,7 +188,10 @@ pub fn export_surface(doc: &Document, path: &Path) -> Result<(), String> {
         .object
         .and_then(|i| doc.scene.objects.get(i))
         .ok_or("select an object to export")?;
-    pssurf::io::save(&o.surface, path).map_err(|e| match e {
+    let surface = o
+        .surface()
+        .ok_or("the selected object is a mesh: export it as a mesh (PLY, OBJ, STL, glTF, VTK)")?;
+    pssurf::io::save(surface, path).map_err(|e| match e {
         pssurf::io::FileError::Io { cause, .. } => write_error(path, &cause),
         other => other.to_string(),
     })

@@ -61,6 +61,8 @@ pub enum Purpose {
     Import,
     /// Import scattered points (CSV x, y, z) as the PS-spline interpolating them.
     ImportPoints,
+    /// Import a triangle mesh (OBJ, PLY, STL) for reference and subdivision.
+    ImportMesh,
     /// Save the document to it as a file of this kind.
     SaveAs(FileKind),
     /// Use it as the Export dialog's file.
@@ -74,6 +76,7 @@ impl Purpose {
             Purpose::Add => "Add the objects of a file",
             Purpose::Import => "Import the surfaces of an IGES file",
             Purpose::ImportPoints => "Import points (CSV x, y, z) and fit a surface",
+            Purpose::ImportMesh => "Import a triangle mesh (OBJ, PLY, STL)",
             Purpose::SaveAs(FileKind::Surface) => "Save as a surface file",
             Purpose::SaveAs(FileKind::Scene) => "Save as a scene file",
             Purpose::ExportTo => "Export to",
@@ -88,7 +91,9 @@ impl Purpose {
     fn command(self, path: PathBuf) -> Command {
         match self {
             Purpose::Open => Command::Open(path),
-            Purpose::Add | Purpose::Import | Purpose::ImportPoints => Command::AddFile(path),
+            Purpose::Add | Purpose::Import | Purpose::ImportPoints | Purpose::ImportMesh => {
+                Command::AddFile(path)
+            }
             Purpose::SaveAs(kind) => Command::SaveTo { path, kind },
             Purpose::ExportTo => Command::SetExportPath(path),
         }
@@ -144,16 +149,14 @@ impl Files {
         .id(egui::Id::unique("file chooser"));
         if purpose != Purpose::ExportTo {
             dialog = dialog.show_files_filter(Box::new(move |p: &Path| {
-                p.extension().is_some_and(|e| {
-                    let iges_file = crate::scene::is_iges_path(p);
-                    match purpose {
-                        Purpose::Import => iges_file,
-                        Purpose::ImportPoints => crate::scene::is_points_path(p),
-                        _ => {
-                            e.eq_ignore_ascii_case("json")
-                                || e.eq_ignore_ascii_case(pssurf::io::BINARY_EXTENSION)
-                                || iges_file
-                        }
+                p.extension().is_some_and(|e| match purpose {
+                    Purpose::Import => crate::scene::is_iges_path(p),
+                    Purpose::ImportPoints => crate::scene::is_points_path(p),
+                    Purpose::ImportMesh => crate::scene::is_mesh_path(p),
+                    _ => {
+                        e.eq_ignore_ascii_case("json")
+                            || e.eq_ignore_ascii_case(pssurf::io::BINARY_EXTENSION)
+                            || crate::scene::is_import_path(p)
                     }
                 })
             }));

@@ -30,6 +30,7 @@ pub mod gpu;
 pub mod headless;
 pub mod legend;
 pub mod menu;
+pub mod mesh_view;
 pub mod panels;
 pub mod probe;
 pub mod properties;

@@ -105,6 +105,15 @@ fn file_menu(ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
     {
         cx.emit(Command::Choose(Purpose::ImportPoints));
     }
+    if ui
+        .button("Import mesh (OBJ, PLY, STL)…")
+        .on_hover_text(
+            "Add a triangle mesh for reference: shaded, zebra and discrete curvature views, and the subdivision schemes (Loop, √3, butterfly) in the Subdivision panel",
+        )
+        .clicked()
+    {
+        cx.emit(Command::Choose(Purpose::ImportMesh));
+    }
     if let Some(p) = cx.autosave.filter(|p| p.exists())
         && ui
             .button("Recover autosave")

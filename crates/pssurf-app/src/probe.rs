@@ -135,7 +135,7 @@ pub fn probe_at(
     size: f64,
 ) -> Option<Probe> {
     let o = scene.objects.get(object)?;
-    let surface = &o.surface;
+    let surface = o.surface()?;
     let mut cursor: Cursor = surface.cursor_near(uv);
     let jet = surface.jet_with(uv, &mut cursor).ok()?.jet;
     let m = o.transform.matrix();

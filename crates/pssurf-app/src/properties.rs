@@ -6,7 +6,7 @@ use pssurf::surface::PiecewiseSurface;
 use crate::command::{Command, ObjectEdit, ViewContext};
 use crate::edit::{self, VertexControl};
 use crate::fields::{self, Rule};
-use crate::scene::{Material, SceneObject, Transform};
+use crate::scene::{Material, SceneObject, Shape, Transform};
 
 /// Values typed into the control-point editor, kept while the edit they asked for has not
 /// changed the object (a refused edit leaves them in the fields to correct).
@@ -49,16 +49,20 @@ impl Properties {
     fn vertex_ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>, i: usize) {
         ui.heading("Control triangle");
         let o = &cx.doc.scene.objects[i];
+        let Some(surface) = o.surface() else {
+            ui.weak("A mesh object has no control points: subdivide it in the Subdivision panel.");
+            return;
+        };
         let Some(v) = cx
             .doc
             .selection
             .vertex
-            .filter(|&v| v < edit::vertex_count(&o.surface))
+            .filter(|&v| v < edit::vertex_count(surface))
         else {
             ui.weak("Click a PS-triangle in the domain view to select its vertex.");
             return;
         };
-        let current = edit::vertex_control(&o.surface, v);
+        let current = edit::vertex_control(surface, v);
         // Keep the user's values while the same vertex stays selected and unchanged.
         self.typed = self
             .typed
@@ -115,14 +119,7 @@ fn object_fields(ui: &mut egui::Ui, o: &SceneObject, refused: &mut Vec<String>) 
                 ui.selectable_value(&mut material, m, m.name());
             }
         });
-    let triangles = o.surface.ps_basis().map_or(o.surface.piece_count(), |b| {
-        b.triangulation().triangle_count()
-    });
-    ui.label(format!(
-        "{} surface, {} vertices, {triangles} triangles",
-        o.surface.kind().name(),
-        edit::vertex_count(&o.surface),
-    ));
+    ui.label(describe_shape(o));
     transform_grid(ui, &mut t, refused);
     let mut edits = Vec::new();
     if name != o.name {
@@ -205,4 +202,39 @@ fn control_grid(ui: &mut egui::Ui, c: &mut VertexControl, refused: &mut Vec<Stri
             }
         });
     changed
+}
+
+/// One line on what an object is: its kind and size.
+fn describe_shape(o: &SceneObject) -> String {
+    match &o.shape {
+        Shape::Surface(s) => {
+            let triangles = s
+                .ps_basis()
+                .map_or(s.piece_count(), |b| b.triangulation().triangle_count());
+            format!(
+                "{} surface, {} vertices, {triangles} triangles",
+                s.kind().name(),
+                edit::vertex_count(s),
+            )
+        }
+        Shape::Mesh(m) => {
+            let (c, r) = (&m.recipe.control, &m.refined);
+            let refined = if m.recipe.times == 0 {
+                String::new()
+            } else {
+                format!(
+                    "; after {} × {}: {} vertices, {} triangles",
+                    m.recipe.times,
+                    m.recipe.scheme.name(),
+                    r.positions.len(),
+                    r.triangles.len()
+                )
+            };
+            format!(
+                "mesh, {} vertices, {} triangles{refined}",
+                c.positions.len(),
+                c.triangles.len()
+            )
+        }
+    }
 }

@@ -9,6 +9,7 @@ use pssurf::io::{
     Durability, SurfaceEncoding, atomic_write, atomic_write_bytes, is_binary_surface_file,
     write_surface,
 };
+use pssurf::subdivision::{Mesh, RefinedMesh};
 use pssurf::surface::Surface;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -114,10 +115,10 @@ pub struct SceneObject {
     pub visible: bool,
     /// Its placement.
     pub transform: Transform,
-    /// The surface (any kind), shared with the undo history: a snapshot of the scene copies
-    /// the pointer, and an edit copies the surface only when a snapshot still holds it (see
-    /// [`SceneObject::surface_mut`]).
-    pub surface: Arc<Surface>,
+    /// What it is: a surface (any kind) or a mesh, shared with the undo history: a snapshot
+    /// of the scene copies the pointer, and an edit copies the surface only when a snapshot
+    /// still holds it (see [`SceneObject::surface_mut`]).
+    pub shape: Shape,
     /// A number that changes whenever the surface or transform changes (display caches key
     /// on it; it is not saved).
     pub revision: u64,
@@ -125,6 +126,75 @@ pub struct SceneObject {
     /// through undo and redo; not saved): what refers to an object across edits that may
     /// move it in the list uses this, not its index.
     pub id: u64,
+}
+
+/// Why a mesh object refuses a control-point edit.
+pub const NO_CONTROLS: &str = "a mesh object has no control points (subdivide it instead)";
+
+/// What an object is.
+#[derive(Clone, Debug)]
+pub enum Shape {
+    /// A surface of any kind.
+    Surface(Arc<Surface>),
+    /// A triangle mesh, shown for reference and refined by a subdivision scheme.
+    Mesh(Arc<MeshShape>),
+}
+
+/// The most triangles a mesh object may have after its subdivision (what the view draws of
+/// one object; the same bound as a sampled surface).
+pub const MAX_MESH_TRIANGLES: usize = 4_000_000;
+
+/// A mesh object: the control mesh and its subdivision ([`RefinedMesh`]), with the refined
+/// mesh, its normals and its discrete curvatures computed once.
+#[derive(Clone, Debug)]
+pub struct MeshShape {
+    /// The control mesh and the subdivision applied to it.
+    pub recipe: RefinedMesh,
+    /// The refined mesh.
+    pub refined: Mesh,
+    /// Unit vertex normals of the refined mesh.
+    pub normals: Vec<nalgebra::Vector3<f64>>,
+    /// The discrete Gaussian and mean curvature per vertex (NaN on the boundary), when the
+    /// refined mesh is manifold; else why not.
+    pub curvature: Result<DiscreteCurvature, String>,
+}
+
+/// Discrete curvatures per vertex of a mesh (see `pssurf::subdivision::mesh::discrete_curvature`).
+#[derive(Clone, Debug)]
+pub struct DiscreteCurvature {
+    /// Gaussian curvature K.
+    pub gaussian: Vec<f64>,
+    /// Mean curvature H.
+    pub mean: Vec<f64>,
+}
+
+impl MeshShape {
+    /// Refines the control mesh as the recipe says; an error in words when the control mesh
+    /// is invalid, the scheme cannot run on it (not manifold) or the result would have more
+    /// than [`MAX_MESH_TRIANGLES`] triangles.
+    pub fn new(recipe: RefinedMesh) -> Result<MeshShape, String> {
+        let after = recipe.triangles_after();
+        if after > MAX_MESH_TRIANGLES as f64 {
+            return Err(format!(
+                "{} step(s) of {} would make about {} triangles, more than the {} million a mesh object may have",
+                recipe.times,
+                recipe.scheme.name(),
+                crate::fields::compact(after),
+                MAX_MESH_TRIANGLES / 1_000_000
+            ));
+        }
+        let refined = recipe.refine().map_err(|e| e.to_string())?;
+        let normals = refined.vertex_normals();
+        let curvature = pssurf::subdivision::mesh::discrete_curvature(&refined)
+            .map(|(gaussian, mean)| DiscreteCurvature { gaussian, mean })
+            .map_err(|e| e.to_string());
+        Ok(MeshShape {
+            recipe,
+            refined,
+            normals,
+            curvature,
+        })
+    }
 }
 
 /// The largest scene or surface file the application opens (2 GiB: loading takes about
@@ -143,6 +213,21 @@ pub fn is_points_path(path: &Path) -> bool {
 pub fn is_iges_path(path: &Path) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("igs") || e.eq_ignore_ascii_case("iges"))
+}
+
+/// Whether `path` names a triangle mesh file (extension `obj`, `ply` or `stl`, any case).
+pub fn is_mesh_path(path: &Path) -> bool {
+    path.extension().is_some_and(|e| {
+        ["obj", "ply", "stl"]
+            .iter()
+            .any(|m| e.eq_ignore_ascii_case(m))
+    })
+}
+
+/// Whether `path` names a file the application imports rather than saves to (IGES, CSV
+/// points, a mesh): opening one gives an untitled document.
+pub fn is_import_path(path: &Path) -> bool {
+    is_iges_path(path) || is_points_path(path) || is_mesh_path(path)
 }
 
 /// Reads a text file of bounded size: a regular file up to [`MAX_FILE_BYTES`] (checked
@@ -194,16 +279,61 @@ pub fn fresh_revision() -> u64 {
 impl SceneObject {
     /// A visible object with the identity placement.
     pub fn new(name: impl Into<String>, surface: Surface) -> Self {
+        SceneObject::of_shape(name, Shape::Surface(Arc::new(surface)))
+    }
+
+    /// A visible mesh object with the identity placement.
+    pub fn mesh(name: impl Into<String>, mesh: MeshShape) -> Self {
+        SceneObject::of_shape(name, Shape::Mesh(Arc::new(mesh)))
+    }
+
+    /// A visible object of any shape with the identity placement.
+    pub fn of_shape(name: impl Into<String>, shape: Shape) -> Self {
         SceneObject {
             name: name.into(),
             group: String::new(),
             material: Material::default(),
             visible: true,
             transform: Transform::default(),
-            surface: Arc::new(surface),
+            shape,
             revision: fresh_revision(),
             id: fresh_revision(),
         }
+    }
+
+    /// The surface, unless the object is a mesh.
+    pub fn surface(&self) -> Option<&Arc<Surface>> {
+        match &self.shape {
+            Shape::Surface(s) => Some(s),
+            Shape::Mesh(_) => None,
+        }
+    }
+
+    /// The mesh, if the object is one.
+    pub fn mesh_shape(&self) -> Option<&MeshShape> {
+        match &self.shape {
+            Shape::Mesh(m) => Some(m),
+            Shape::Surface(_) => None,
+        }
+    }
+
+    /// The number of control groups an edit can select (see `crate::edit`; 0 for a mesh).
+    pub fn vertex_count(&self) -> usize {
+        self.surface().map_or(0, |s| crate::edit::vertex_count(s))
+    }
+
+    /// What kind of object this is, in words (the surface kind's name, or "mesh").
+    pub fn kind_name(&self) -> &'static str {
+        match &self.shape {
+            Shape::Surface(s) => s.kind().name(),
+            Shape::Mesh(_) => "mesh",
+        }
+    }
+
+    /// Replaces what the object is (marked as changed).
+    pub fn set_shape(&mut self, shape: Shape) {
+        self.shape = shape;
+        self.touch();
     }
 
     /// Marks the object as changed.
@@ -213,9 +343,15 @@ impl SceneObject {
 
     /// The surface for an edit, marked as changed: copied first if the undo history still
     /// shares it (copy on write), so the history keeps the surface as it was.
-    pub fn surface_mut(&mut self) -> &mut Surface {
-        self.touch();
-        Arc::make_mut(&mut self.surface)
+    /// None for a mesh object (nothing is marked then).
+    pub fn surface_mut(&mut self) -> Option<&mut Surface> {
+        match &mut self.shape {
+            Shape::Surface(s) => {
+                self.revision = fresh_revision();
+                Some(Arc::make_mut(s))
+            }
+            Shape::Mesh(_) => None,
+        }
     }
 }
 
@@ -288,7 +424,10 @@ struct ObjectFile {
     visible: bool,
     #[serde(default)]
     transform: Transform,
-    surface: Value,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    surface: Option<Value>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    mesh: Option<Value>,
 }
 
 fn yes() -> bool {
@@ -320,8 +459,11 @@ impl Scene {
                     material: o.material,
                     visible: o.visible,
                     transform: o.transform,
-                    surface: serde_json::from_str(&pssurf::io::to_json_string(&o.surface))
-                        .expect("the library writes valid JSON"),
+                    surface: o.surface().map(|s| {
+                        serde_json::from_str(&pssurf::io::to_json_string(s))
+                            .expect("the library writes valid JSON")
+                    }),
+                    mesh: o.mesh_shape().map(|m| pssurf::io::mesh_to_value(&m.recipe)),
                 })
                 .collect(),
         };
@@ -366,15 +508,29 @@ impl Scene {
                     o.name
                 ));
             }
-            let surface = pssurf::io::from_json_str(&o.surface.to_string())
-                .map_err(|e| format!("object {k} ({}): {e}", o.name))?;
+            let at = |e: String| format!("object {k} ({}): {e}", o.name);
+            let shape = match (&o.surface, &o.mesh) {
+                (Some(surface), None) => Shape::Surface(Arc::new(
+                    pssurf::io::from_json_str(&surface.to_string())
+                        .map_err(|e| at(e.to_string()))?,
+                )),
+                (None, Some(mesh)) => {
+                    let recipe = pssurf::io::mesh_from_value(mesh).map_err(at)?;
+                    Shape::Mesh(Arc::new(MeshShape::new(recipe).map_err(at)?))
+                }
+                _ => {
+                    return Err(at(
+                        "an object needs a surface or a mesh (one of them)".into()
+                    ));
+                }
+            };
             objects.push(SceneObject {
                 name: o.name,
                 group: o.group,
                 material: o.material,
                 visible: o.visible,
                 transform: o.transform,
-                surface: Arc::new(surface),
+                shape,
                 revision: fresh_revision(),
                 id: fresh_revision(),
             });
@@ -405,6 +561,9 @@ impl Scene {
                 objects: vec![SceneObject::new(&name, surface)],
             };
             return Ok((scene, FileKind::Surface));
+        }
+        if is_mesh_path(path) {
+            return Scene::from_mesh_file(path).map(|scene| (scene, FileKind::Scene));
         }
         let text = read_bounded(path).map_err(|source| SceneError::Io {
             path: path.display().to_string(),
@@ -451,6 +610,42 @@ impl Scene {
         })
     }
 
+    /// The triangle mesh of an OBJ, PLY or STL file as one mesh object named after the file,
+    /// not subdivided (at most [`MAX_FILE_BYTES`] and [`MAX_MESH_TRIANGLES`] triangles).
+    pub fn from_mesh_file(path: &Path) -> Result<Scene, SceneError> {
+        let shown = path.display().to_string();
+        let meta = std::fs::metadata(path).map_err(|source| SceneError::Io {
+            path: shown.clone(),
+            source,
+        })?;
+        let invalid = |message: String| SceneError::Invalid {
+            path: shown.clone(),
+            message,
+        };
+        if !meta.is_file() {
+            return Err(invalid("is not a regular file".into()));
+        }
+        if meta.len() > MAX_FILE_BYTES {
+            return Err(invalid(format!(
+                "{} bytes, more than the {MAX_FILE_BYTES} the application opens",
+                meta.len()
+            )));
+        }
+        use pssurf_viz::import::ImportError;
+        let mesh = pssurf_viz::import::read_mesh(path).map_err(|e| match e {
+            ImportError::Read { message, .. } => invalid(message),
+            ImportError::Format(_) => invalid("not a mesh file (use .obj, .ply or .stl)".into()),
+        })?;
+        let shape = MeshShape::new(RefinedMesh::new(mesh)).map_err(invalid)?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        Ok(Scene {
+            objects: vec![SceneObject::mesh(name, shape)],
+        })
+    }
+
     /// The B-spline surfaces of an IGES file's text as objects of group `group` (see
     /// `pssurf::iges`); an error when the file holds none.
     pub fn from_iges(text: &str, group: &str) -> Result<Scene, String> {
@@ -474,6 +669,9 @@ impl Scene {
     /// object, in its own coordinates).
     pub fn surface_file_problem(&self) -> Option<String> {
         match self.objects.as_slice() {
+            [o] if o.surface().is_none() => {
+                Some("the object is a mesh, which a surface file cannot hold".into())
+            }
             [o] if o.transform.is_identity() => None,
             [_] => Some(
                 "the object is moved, turned or scaled, which a surface file cannot record".into(),
@@ -509,7 +707,8 @@ impl Scene {
                 }
                 let encoding = SurfaceEncoding::for_path(path);
                 atomic_write(path, Durability::Durable, |w| {
-                    write_surface(&self.objects[0].surface, encoding, w)
+                    let surface = self.objects[0].surface().expect("checked above");
+                    write_surface(surface, encoding, w)
                 })
             }
         };
@@ -681,8 +880,8 @@ mod binary_files {
         assert_eq!(kind, FileKind::Surface);
         assert_eq!(back.objects[0].name, "one");
         assert_eq!(
-            pssurf::io::to_json_string(&back.objects[0].surface),
-            pssurf::io::to_json_string(&one.objects[0].surface)
+            pssurf::io::to_json_string(back.objects[0].surface().unwrap()),
+            pssurf::io::to_json_string(one.objects[0].surface().unwrap())
         );
         // A cut binary file is refused with its name.
         let bytes = std::fs::read(&path).unwrap();

@@ -94,7 +94,7 @@ fn object_row(doc: &Document, ui: &mut egui::Ui, i: usize, actions: &mut Actions
             actions.toggle = vec![i];
         }
         let selected = doc.selection.object == Some(i);
-        let label = format!("{} ({})", o.name, o.surface.kind().name());
+        let label = format!("{} ({})", o.name, o.kind_name());
         if ui
             .selectable_label(selected, label)
             .on_hover_text("Select")

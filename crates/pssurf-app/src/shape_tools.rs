@@ -87,7 +87,8 @@ pub fn ui(
     vertex: usize,
     c: &VertexControl,
 ) {
-    let Some(alpha) = alpha(&cx.doc.scene.objects[object].surface, vertex, c) else {
+    let Some(alpha) = (cx.doc.scene.objects[object].surface()).and_then(|s| alpha(s, vertex, c))
+    else {
         return;
     };
     let set = |control| Command::SetVertex {

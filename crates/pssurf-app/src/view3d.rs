@@ -253,7 +253,7 @@ fn ndc(rect: Rect, pos: Pos2) -> (f32, f32) {
 pub fn pick(cx: &ViewContext<'_>, camera: &OrbitCamera, rect: Rect, pos: Pos2) -> Command {
     let (x, y) = ndc(rect, pos);
     let (origin, dir) = camera.ray(x, y, rect.width() / rect.height().max(1.0));
-    let mut best: Option<(usize, f32, Point2<f64>)> = None;
+    let mut best: Option<(usize, f32, Option<Point2<f64>>)> = None;
     let scene = &cx.doc.scene;
     for (i, _) in scene.visible() {
         let Some(m) = cx.runtime.cache.object_mesh(scene, i) else {
@@ -266,17 +266,22 @@ pub fn pick(cx: &ViewContext<'_>, camera: &OrbitCamera, rect: Rect, pos: Pos2) -
             &m.indices,
         ) && best.is_none_or(|(_, bd, _)| d < bd)
         {
+            // A mesh has no parameters (no uvs): it hides what lies behind, and the probe,
+            // which reads surfaces, is removed.
             let idx = &m.indices[3 * t..3 * t + 3];
-            let uv = idx.iter().zip(b).fold([0.0, 0.0], |acc, (&k, w)| {
-                let p = m.uvs[k as usize];
-                [acc[0] + w as f64 * p[0], acc[1] + w as f64 * p[1]]
+            let uv = (m.uvs.len() == m.vertices.len()).then(|| {
+                let uv = idx.iter().zip(b).fold([0.0, 0.0], |acc, (&k, w)| {
+                    let p = m.uvs[k as usize];
+                    [acc[0] + w as f64 * p[0], acc[1] + w as f64 * p[1]]
+                });
+                Point2::new(uv[0], uv[1])
             });
-            best = Some((i, d, Point2::new(uv[0], uv[1])));
+            best = Some((i, d, uv));
         }
     }
     match best {
-        Some((object, _, uv)) => Command::SetProbe { object, uv },
-        None => Command::RemoveProbe,
+        Some((object, _, Some(uv))) => Command::SetProbe { object, uv },
+        _ => Command::RemoveProbe,
     }
 }
 
@@ -285,11 +290,12 @@ fn control_points(doc: &Document) -> Option<(usize, usize, Vec<Vector3<f64>>)> {
     let i = doc.selection.object?;
     let v = doc.selection.vertex?;
     let o = doc.scene.objects.get(i)?;
-    if v >= edit::vertex_count(&o.surface) {
+    let surface = o.surface()?;
+    if v >= edit::vertex_count(surface) {
         return None;
     }
     let m = o.transform.matrix();
-    let c = edit::vertex_control(&o.surface, v);
+    let c = edit::vertex_control(surface, v);
     Some((
         i,
         v,
@@ -345,13 +351,14 @@ pub fn drag_point(
         point: k,
     } = handle;
     let o = doc.scene.objects.get(i)?;
-    if d == egui::Vec2::ZERO || v >= edit::vertex_count(&o.surface) {
+    let surface = o.surface()?;
+    if d == egui::Vec2::ZERO || v >= edit::vertex_count(surface) {
         return None;
     }
     let per_pixel = 2.0 * camera.visible_half_height() as f64 / rect.height().max(1.0) as f64;
     let (right, up) = camera.right_up();
     let (right, up) = (right.cast::<f64>(), up.cast::<f64>());
-    let mut c = edit::vertex_control(&o.surface, v);
+    let mut c = edit::vertex_control(surface, v);
     let mut world = per_pixel * (d.x as f64 * right - d.y as f64 * up);
     let t = o.transform;
     let m = t.matrix();

@@ -63,7 +63,7 @@ fn lines_of_curvature_from_the_panel_are_meridians_and_parallels_and_follow_a_dr
     // they are the lines of the new surface.
     let before = set.clone();
     let mut app = h.into_state();
-    let mut c = vertex_control(&app.doc.scene.objects[1].surface, 5);
+    let mut c = vertex_control(app.doc.scene.objects[1].surface().unwrap(), 5);
     c.points[0].z += 0.2;
     app.drag_vertex(1, 5, c).unwrap();
     app.refresh_probe();
@@ -82,7 +82,7 @@ fn lines_of_curvature_from_the_panel_are_meridians_and_parallels_and_follow_a_dr
             max_points: 5_000,
             ..FieldLineOptions::default()
         };
-        let fresh = trace_field_line(o.surface.as_ref(), family, seed, &opts).unwrap();
+        let fresh = trace_field_line(o.surface().unwrap().as_ref(), family, seed, &opts).unwrap();
         assert_eq!(fresh.curve, b.curve);
     }
     assert!(
@@ -104,19 +104,19 @@ fn level_lines_and_a_geodesic_from_the_panel_and_clearing_them() {
     );
     let set = &app.runtime.curves.sets[0];
     let o = &app.doc.scene.objects[1];
-    let (fresh, _) = trace(&o.surface, &set.request).unwrap();
+    let (fresh, _) = trace(o.surface().unwrap(), &set.request).unwrap();
     assert_eq!(fresh.len(), set.curves.len());
     assert!(!set.curves.is_empty());
     // A numeric edit changes the surface: the level lines are traced again for it.
     let mut app = h.into_state();
-    let mut c = vertex_control(&app.doc.scene.objects[1].surface, 7);
+    let mut c = vertex_control(app.doc.scene.objects[1].surface().unwrap(), 7);
     c.points[1].z -= 0.1;
     app.set_vertex(1, 7, c).unwrap();
     app.refresh_probe();
     let set = &app.runtime.curves.sets[0];
     let o = &app.doc.scene.objects[1];
     assert_eq!(set.revision, o.revision);
-    let (fresh, _) = trace(&o.surface, &set.request).unwrap();
+    let (fresh, _) = trace(o.surface().unwrap(), &set.request).unwrap();
     let same = fresh
         .iter()
         .zip(&set.curves)

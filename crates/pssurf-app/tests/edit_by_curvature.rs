@@ -17,7 +17,10 @@ fn panel_open() -> (Harness<'static, App>, nalgebra::Point2<f64>) {
     let mut app = App::demo();
     app.doc.selection.object = Some(1);
     let mut h = harness(app);
-    let (lo, hi) = h.state().doc.scene.objects[1].surface.domain_bounds();
+    let (lo, hi) = h.state().doc.scene.objects[1]
+        .surface()
+        .unwrap()
+        .domain_bounds();
     let uv = nalgebra::Point2::from((lo.coords + hi.coords) / 2.0);
     h.state_mut().apply(Command::SetProbe { object: 1, uv });
     h.run_steps(2);
@@ -28,9 +31,17 @@ fn panel_open() -> (Harness<'static, App>, nalgebra::Point2<f64>) {
 #[test]
 fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
     let (mut h, uv) = panel_open();
-    let before = h.state().doc.scene.objects[1].surface.control_points();
+    let before = h.state().doc.scene.objects[1]
+        .surface()
+        .unwrap()
+        .control_points();
     let k0 = Measure::Gaussian
-        .of(&h.state().doc.scene.objects[1].surface.jet(uv).unwrap().jet)
+        .of(&h.state().doc.scene.objects[1]
+            .surface()
+            .unwrap()
+            .jet(uv)
+            .unwrap()
+            .jet)
         .unwrap();
     let target = k0 + 0.25;
     let node = h
@@ -40,7 +51,7 @@ fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
     node.set_value_accesskit(target);
     h.run_steps(2);
     press(&mut h, "Apply");
-    let s = &h.state().doc.scene.objects[1].surface;
+    let s = h.state().doc.scene.objects[1].surface().unwrap();
     let k = Measure::Gaussian.of(&s.jet(uv).unwrap().jet).unwrap();
     assert!(
         (k - target).abs() < 1e-8,
@@ -52,7 +63,10 @@ fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
     assert!(h.state().runtime.region.is_some());
     h.state_mut().apply(Command::Undo);
     assert_eq!(
-        h.state().doc.scene.objects[1].surface.control_points(),
+        h.state().doc.scene.objects[1]
+            .surface()
+            .unwrap()
+            .control_points(),
         before
     );
 }
@@ -62,9 +76,12 @@ fn the_panel_prescribes_k_at_the_probe_in_one_undo_step() {
 #[test]
 fn dragging_the_target_edits_live() {
     let (mut h, uv) = panel_open();
-    let before = h.state().doc.scene.objects[1].surface.control_points();
+    let before = h.state().doc.scene.objects[1]
+        .surface()
+        .unwrap()
+        .control_points();
     let measure = |h: &egui_kittest::Harness<'_, App>| {
-        let s = &h.state().doc.scene.objects[1].surface;
+        let s = h.state().doc.scene.objects[1].surface().unwrap();
         Measure::Gaussian.of(&s.jet(uv).unwrap().jet).unwrap()
     };
     let k0 = measure(&h);
@@ -83,7 +100,10 @@ fn dragging_the_target_edits_live() {
     assert!(seen[5] > k0, "{k0} then {seen:?}");
     h.state_mut().apply(Command::Undo);
     assert_eq!(
-        h.state().doc.scene.objects[1].surface.control_points(),
+        h.state().doc.scene.objects[1]
+            .surface()
+            .unwrap()
+            .control_points(),
         before
     );
 }

@@ -13,22 +13,29 @@ use support::{harness, press};
 fn the_fairing_panel_fairs_the_selected_surface_in_one_undo_step() {
     let mut app = App::demo();
     app.doc.selection.object = Some(0);
-    let noisy = match app.doc.scene.objects[0].surface.uniform() {
+    let noisy = match app.doc.scene.objects[0].surface().unwrap().uniform() {
         Some(u) => {
             pssurf::surface::Surface::from(u.with_noise(0.01, pssurf::noise::NoiseKind::Uniform, 4))
         }
         None => panic!("the demo's first object is a UPS surface"),
     };
-    *app.doc.scene.objects[0].surface_mut() = noisy;
+    *app.doc.scene.objects[0].surface_mut().unwrap() = noisy;
     let mut h = harness(app);
-    let before = h.state().doc.scene.objects[0].surface.control_points();
+    let before = h.state().doc.scene.objects[0]
+        .surface()
+        .unwrap()
+        .control_points();
     press(&mut h, "Fairing");
     press(&mut h, "Fair");
-    let after = h.state().doc.scene.objects[0].surface.control_points();
+    let after = h.state().doc.scene.objects[0]
+        .surface()
+        .unwrap()
+        .control_points();
     assert_ne!(after, before);
     assert!(h.state().status.contains("faired"), "{}", h.state().status);
     let basis = h.state().doc.scene.objects[0]
-        .surface
+        .surface()
+        .unwrap()
         .ps_basis()
         .unwrap()
         .clone();
@@ -41,7 +48,10 @@ fn the_fairing_panel_fairs_the_selected_surface_in_one_undo_step() {
     assert_eq!(h.state().doc.undo_name(), Some("fair"));
     h.state_mut().apply(Command::Undo);
     assert_eq!(
-        h.state().doc.scene.objects[0].surface.control_points(),
+        h.state().doc.scene.objects[0]
+            .surface()
+            .unwrap()
+            .control_points(),
         before
     );
 }

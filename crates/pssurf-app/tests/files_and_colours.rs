@@ -42,7 +42,7 @@ fn titles(h: &Harness<'_, App>) -> Vec<String> {
 /// Moves control point Q2 of vertex `v` of object 0 up by `dz`, as one edit.
 fn raise(h: &mut Harness<'_, App>, v: usize, dz: f64) {
     let app = h.state_mut();
-    let mut c = vertex_control(&app.doc.scene.objects[0].surface, v);
+    let mut c = vertex_control(app.doc.scene.objects[0].surface().unwrap(), v);
     c.points[1].z += dz;
     app.apply(Command::SetVertex {
         object: 0,
@@ -59,7 +59,7 @@ fn a_single_surface_is_saved_as_a_surface_file_that_the_library_loads() {
     let mut h = harness(app);
     assert_eq!(h.state().title(), "bowl.json — pssurf");
     let app = h.state_mut();
-    let mut c = vertex_control(&app.doc.scene.objects[0].surface, 3);
+    let mut c = vertex_control(app.doc.scene.objects[0].surface().unwrap(), 3);
     c.points[1].z += 0.25;
     app.apply(Command::SetVertex {
         object: 0,
@@ -81,7 +81,9 @@ fn a_single_surface_is_saved_as_a_surface_file_that_the_library_loads() {
     let saved = pssurf::io::load(&path).expect("the library (and so `pssurf info`) loads it");
     let z = vertex_control(&saved, 3).points[1].z;
     assert!(
-        (z - vertex_control(&h.state().doc.scene.objects[0].surface, 3).points[1].z).abs() == 0.0
+        (z - vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 3).points[1].z)
+            .abs()
+            == 0.0
     );
     assert_eq!(h.state().title(), "bowl.json — pssurf");
 
@@ -102,7 +104,7 @@ fn a_single_surface_is_saved_as_a_surface_file_that_the_library_loads() {
     let again = pssurf::io::load(&copy).expect("Save As wrote a surface file");
     assert_eq!(
         pssurf::io::to_json_string(&again),
-        pssurf::io::to_json_string(&h.state().doc.scene.objects[0].surface)
+        pssurf::io::to_json_string(h.state().doc.scene.objects[0].surface().unwrap())
     );
     assert_eq!(h.state().doc.kind, FileKind::Surface);
     assert_eq!(
@@ -198,7 +200,7 @@ fn unsaved_changes_are_asked_about_before_new_open_and_close() {
     let saved = pssurf::io::load(&other).unwrap();
     assert_eq!(
         pssurf::io::to_json_string(&saved),
-        pssurf::io::to_json_string(&h.state().doc.scene.objects[0].surface)
+        pssurf::io::to_json_string(h.state().doc.scene.objects[0].surface().unwrap())
     );
     // An unmodified document closes without a question.
     let mut clean = harness(surface_document(dir.path()).1);
@@ -273,7 +275,7 @@ fn the_automatic_range_follows_drags_hiding_and_per_object_choice() {
     let before = h.state().legend().unwrap().scale;
     assert_eq!(before, expected(h.state(), &visible_values(h.state())));
     // A drag: the scale holds still while the point moves, then fits the new data.
-    let mut c = vertex_control(&h.state().doc.scene.objects[0].surface, 20);
+    let mut c = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 20);
     h.state_mut().apply(Command::StartDrag);
     for _ in 0..5 {
         c.points[0].z += 0.4;
@@ -365,7 +367,7 @@ fn z_1e300_typed_into_the_editor_is_refused_without_a_panic() {
     let mut app = App::demo();
     app.doc.selection.vertex = Some(7);
     let mut h = harness(app);
-    let before = vertex_control(&h.state().doc.scene.objects[0].surface, 7);
+    let before = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 7);
     // Through accessibility, and by typing as a user would.
     h.get_by_label("Q1 z").set_value_accesskit(1e300);
     h.run_steps(3);
@@ -379,14 +381,14 @@ fn z_1e300_typed_into_the_editor_is_refused_without_a_panic() {
     h.key_press(Key::Enter);
     h.run_steps(3);
     assert_eq!(
-        vertex_control(&h.state().doc.scene.objects[0].surface, 7),
+        vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 7),
         before
     );
     assert!(h.state().status.contains("±1e60"), "{}", h.state().status);
     // 1e59 is accepted (the library's range) and the view copes with it.
     h.get_by_label("Q1 z").set_value_accesskit(1e59);
     h.run_steps(4);
-    let after = vertex_control(&h.state().doc.scene.objects[0].surface, 7);
+    let after = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 7);
     assert_eq!(after.points[0].z, 1e59);
     let m = h.state().view.camera.view_projection(1.5);
     assert!(m.iter().all(|x| x.is_finite()));
@@ -494,8 +496,8 @@ fn no_value_typed_into_any_number_field_breaks_the_application() {
                         t.translate.iter().all(|v| v.abs() <= 1e60),
                         "{what} {name} = {x}"
                     );
-                    for g in 0..pssurf_app::edit::vertex_count(&o.surface) {
-                        let c = vertex_control(&o.surface, g);
+                    for g in 0..pssurf_app::edit::vertex_count(o.surface().unwrap()) {
+                        let c = vertex_control(o.surface().unwrap(), g);
                         assert!(c.points.iter().all(|p| p.iter().all(|v| v.abs() <= 1e60)));
                         if let Some(w) = &c.weights {
                             assert!(w.iter().all(|w| (1e-30..=1e30).contains(w)));
@@ -551,7 +553,7 @@ fn an_exported_surface_file_loads_again_and_bad_targets_say_why() {
     let loaded = pssurf::io::load(&out).expect("the exported surface file loads");
     assert_eq!(
         pssurf::io::to_json_string(&loaded),
-        pssurf::io::to_json_string(&h.state().doc.scene.objects[1].surface)
+        pssurf::io::to_json_string(h.state().doc.scene.objects[1].surface().unwrap())
     );
     // A folder, a missing folder, a picture too small for its legend: one clear message
     // each, and nothing written.
@@ -594,7 +596,7 @@ fn an_iges_file_opens_as_an_untitled_scene_of_nurbs_surfaces() {
     app.apply(Command::AddFile(iges.clone()));
     assert_eq!(app.doc.scene.objects.len(), before + 1, "{}", app.status);
     assert!(matches!(
-        *app.doc.scene.objects[before].surface,
+        **app.doc.scene.objects[before].surface().unwrap(),
         Surface::Nurbs(_)
     ));
     // Open replaces the document (App::open: the unsaved-changes question is tested above).
@@ -645,7 +647,7 @@ fn the_nurbs_panel_adds_a_ups_approximation_within_the_tolerance() {
         .unwrap();
     assert!(max <= 0.01, "{}", app.status);
     assert!(matches!(
-        *app.doc.scene.objects[1].surface,
+        **app.doc.scene.objects[1].surface().unwrap(),
         Surface::Uniform(_)
     ));
     assert_eq!(app.doc.undo_name(), Some("new surface"));

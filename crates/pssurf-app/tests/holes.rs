@@ -44,7 +44,7 @@ fn the_hole_dialog_fills_the_sphere_gap_step_by_step() {
     let mut h = harness(app);
     press(&mut h, "Hole filling");
     for object in 0..2 {
-        let uv = near_the_equator(&h.state().doc.scene.objects[object].surface);
+        let uv = near_the_equator(h.state().doc.scene.objects[object].surface().unwrap());
         h.state_mut().apply(Command::SetProbe { object, uv });
         h.run();
         press(&mut h, "Add edge at probe");
@@ -54,13 +54,15 @@ fn the_hole_dialog_fills_the_sphere_gap_step_by_step() {
     assert_eq!(h.state().doc.scene.objects.len(), 4, "{}", h.state().status);
     assert_eq!(h.state().doc.undo_name(), Some("fill hole"));
     let level0 = h.state().doc.scene.objects[2]
-        .surface
+        .surface()
+        .unwrap()
         .control_points()
         .len();
     press(&mut h, "Step");
     press(&mut h, "Step");
     let level2 = h.state().doc.scene.objects[2]
-        .surface
+        .surface()
+        .unwrap()
         .control_points()
         .len();
     // A triangle of side 1, then 4: 3 and 15 vertices, three control points each.
@@ -68,7 +70,7 @@ fn the_hole_dialog_fills_the_sphere_gap_step_by_step() {
     assert_eq!(h.state().doc.undo_name(), Some("hole step"));
     // The patch stays in its hole: its corner on the equator is the sphere's (x, y) =
     // (cos 30°, sin 30°).
-    let patch = &h.state().doc.scene.objects[2].surface;
+    let patch = h.state().doc.scene.objects[2].surface().unwrap();
     let east = nalgebra::Vector3::new(0.75f64.sqrt(), 0.5, 0.0);
     let nearest = patch.domain().boundary()[0]
         .iter()

@@ -23,10 +23,14 @@ fn imported_points_become_an_interpolating_surface() {
     assert!(app.error.is_none(), "{:?}", app.error);
     let o = &app.doc.scene.objects[0];
     assert_eq!(o.name, "hills (fit)");
-    assert!(matches!(*o.surface, Surface::Functional(_)));
+    assert!(matches!(**o.surface().unwrap(), Surface::Functional(_)));
     // It interpolates the data.
     for (x, y, z) in data {
-        let p = o.surface.point(nalgebra::Point2::new(x, y)).unwrap();
+        let p = o
+            .surface()
+            .unwrap()
+            .point(nalgebra::Point2::new(x, y))
+            .unwrap();
         assert!((p.z - z).abs() < 1e-12, "at ({x}, {y}): {} vs {z}", p.z);
     }
     // Bad files say which line, and add nothing.

@@ -18,7 +18,8 @@ fn vertex_on_screen(h: &Harness<'_, App>, v: usize) -> Pos2 {
     let rect = h.get_by_label("domain view").rect();
     let app = h.state();
     let tri = app.doc.scene.objects[app.doc.selection.object.unwrap()]
-        .surface
+        .surface()
+        .unwrap()
         .ps_basis()
         .unwrap()
         .triangulation()
@@ -28,7 +29,7 @@ fn vertex_on_screen(h: &Harness<'_, App>, v: usize) -> Pos2 {
 }
 
 fn z_at(app: &App, object: usize, uv: Point2<f64>) -> f64 {
-    let s = &app.doc.scene.objects[object].surface;
+    let s = app.doc.scene.objects[object].surface().unwrap();
     s.jet_with(uv, &mut s.cursor_near(uv)).unwrap().jet.value.z
 }
 
@@ -57,9 +58,10 @@ fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
     let pos = vertex_on_screen(&h, v);
     click(&mut h, pos);
     assert_eq!(h.state().doc.selection.vertex, Some(v));
-    let before = vertex_control(&h.state().doc.scene.objects[0].surface, v);
+    let before = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), v);
     let uv = h.state().doc.scene.objects[0]
-        .surface
+        .surface()
+        .unwrap()
         .ps_basis()
         .unwrap()
         .triangulation()
@@ -69,7 +71,7 @@ fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
     h.get_by_label("Q2 z")
         .set_value_accesskit(before.points[1].z + 0.25);
     h.run_steps(2);
-    let after = vertex_control(&h.state().doc.scene.objects[0].surface, v);
+    let after = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), v);
     assert!((after.points[1].z - (before.points[1].z + 0.25)).abs() < 1e-12);
     assert_eq!(after.points[0], before.points[0]);
     let z_after = z_at(h.state(), 0, uv);
@@ -79,7 +81,7 @@ fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.run_steps(2);
     assert_eq!(
-        vertex_control(&h.state().doc.scene.objects[0].surface, v),
+        vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), v),
         before
     );
     assert!((z_at(h.state(), 0, uv) - z_before).abs() < 1e-14);
@@ -87,7 +89,7 @@ fn numeric_edit_changes_the_surface_and_undo_redo_restore_it() {
     h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
     h.run_steps(2);
     assert_eq!(
-        vertex_control(&h.state().doc.scene.objects[0].surface, v),
+        vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), v),
         after
     );
 }
@@ -97,7 +99,7 @@ fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
     let mut app = App::demo();
     app.doc.selection.vertex = Some(5);
     let mut h = harness(app);
-    let before = vertex_control(&h.state().doc.scene.objects[0].surface, 5);
+    let before = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 5);
     // Find the first control point's handle on the screen.
     let view = h.get_by_label("3D view").rect();
     let app = h.state();
@@ -135,7 +137,7 @@ fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
         modifiers: Modifiers::NONE,
     });
     h.run_steps(2);
-    let after = vertex_control(&h.state().doc.scene.objects[0].surface, 5);
+    let after = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 5);
     // Dragged upwards on the screen: the point moved along the camera's up direction.
     let (_, up) = h.state().view.camera.right_up();
     let moved = after.points[0] - before.points[0];
@@ -154,7 +156,7 @@ fn dragging_a_control_point_moves_it_and_is_one_undo_step() {
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.run_steps(2);
     assert_eq!(
-        vertex_control(&h.state().doc.scene.objects[0].surface, 5),
+        vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 5),
         before
     );
 }
@@ -194,13 +196,14 @@ fn a_wavelet_step_from_the_panel_thresholds_and_can_be_undone() {
     press(&mut h, "Subdivision");
     press(&mut h, "Subdivide");
     let n = h.state().doc.scene.objects[0]
-        .surface
+        .surface()
+        .unwrap()
         .uniform()
         .unwrap()
         .grid()
         .vertex_count();
     assert!(n > 61, "subdivided: {n} vertices");
-    let smooth = h.state().doc.scene.objects[0].surface.clone();
+    let smooth = h.state().doc.scene.objects[0].surface().unwrap().clone();
     press(&mut h, "Noise");
     press(&mut h, "Add noise");
     press(&mut h, "Wavelets");
@@ -210,15 +213,15 @@ fn a_wavelet_step_from_the_panel_thresholds_and_can_be_undone() {
         "status: {}",
         h.state().status
     );
-    let denoised = vertex_control(&h.state().doc.scene.objects[0].surface, 10);
+    let denoised = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 10);
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.run_steps(2);
-    let noisy = vertex_control(&h.state().doc.scene.objects[0].surface, 10);
+    let noisy = vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 10);
     assert_ne!(denoised, noisy);
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.run_steps(2);
     assert_eq!(
-        vertex_control(&h.state().doc.scene.objects[0].surface, 10),
+        vertex_control(h.state().doc.scene.objects[0].surface().unwrap(), 10),
         vertex_control(&smooth, 10)
     );
     app = h.into_state();
@@ -360,18 +363,18 @@ fn a_shift_drag_moves_a_control_point_along_the_surface_normal() {
     app.frame_all(1.5);
     let rect = egui::Rect::from_min_size(Pos2::ZERO, vec2(900.0, 600.0));
     let v = 9;
-    let before = vertex_control(&app.doc.scene.objects[1].surface, v);
+    let before = vertex_control(app.doc.scene.objects[1].surface().unwrap(), v);
     let [a, b, c] = [before.points[0], before.points[1], before.points[2]];
     let normal = (b - a).cross(&(c - a)).normalize();
     drag(&mut app, rect, v, vec2(4.0, -25.0), true);
-    let after = vertex_control(&app.doc.scene.objects[1].surface, v);
+    let after = vertex_control(app.doc.scene.objects[1].surface().unwrap(), v);
     let moved = after.points[2] - before.points[2];
     assert!(moved.norm() > 1e-3, "did not move");
     assert!(moved.cross(&normal).norm() < 1e-12 * moved.norm().max(1.0));
     assert_eq!(after.points[..2], before.points[..2]);
     // Without Shift the point moves in the view plane, not along the normal.
     drag(&mut app, rect, v, vec2(25.0, 0.0), false);
-    let again = vertex_control(&app.doc.scene.objects[1].surface, v);
+    let again = vertex_control(app.doc.scene.objects[1].surface().unwrap(), v);
     let step = again.points[2] - after.points[2];
     assert!(step.cross(&normal).norm() > 1e-3);
 }
@@ -394,7 +397,7 @@ fn the_new_quadric_dialog_adds_an_exact_hyperbolic_paraboloid_that_undo_removes(
     assert_eq!(app.doc.selection.object, Some(2));
     let o = &app.doc.scene.objects[2];
     assert!(o.name.starts_with("hyperbolic paraboloid"), "{}", o.name);
-    let s = &o.surface;
+    let s = o.surface().unwrap();
     let tri = s.ps_basis().unwrap().triangulation();
     for t in (0..tri.triangle_count()).step_by(5) {
         let v = tri.triangle(t);
@@ -515,7 +518,8 @@ fn the_export_dialog_writes_the_selected_mesh_in_scene_placement() {
         .iter()
         .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
     let (dlo, dhi) = app.doc.scene.objects[1]
-        .surface
+        .surface()
+        .unwrap()
         .ps_basis()
         .unwrap()
         .triangulation()

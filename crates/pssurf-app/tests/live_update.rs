@@ -31,7 +31,7 @@ fn app() -> App {
 
 /// Drags control point 0 of `vertex` of object 1 (the NURPS paraboloid) by `d`.
 fn drag(app: &mut App, vertex: usize, d: f64) {
-    let mut c = vertex_control(&app.doc.scene.objects[1].surface, vertex);
+    let mut c = vertex_control(app.doc.scene.objects[1].surface().unwrap(), vertex);
     c.points[0].z += d;
     c.points[1].x -= 0.5 * d;
     app.drag_vertex(1, vertex, c).unwrap();
@@ -48,7 +48,7 @@ fn a_drag_rewrites_only_the_molecule_and_equals_a_full_rebuild() {
     let update = &g.history[0];
     assert_eq!(update.from, before.generation);
     // Exactly the pieces of the molecule: 6 per triangle.
-    let surface = &app.doc.scene.objects[1].surface;
+    let surface = app.doc.scene.objects[1].surface().unwrap();
     let molecule = surface
         .ps_basis()
         .unwrap()
@@ -97,7 +97,7 @@ fn a_drag_rewrites_only_the_molecule_and_equals_a_full_rebuild() {
 fn a_rejected_drag_changes_nothing() {
     let mut app = app();
     let before = app.runtime.cache.geometry.clone();
-    let mut c = vertex_control(&app.doc.scene.objects[1].surface, 2);
+    let mut c = vertex_control(app.doc.scene.objects[1].surface().unwrap(), 2);
     c.weights = Some(vec![1.0, 0.0, 1.0]);
     assert!(app.drag_vertex(1, 2, c).is_err());
     assert_eq!(app.runtime.cache.geometry.generation, before.generation);
@@ -153,7 +153,8 @@ fn combs_follow_a_drag_by_rebuilding_the_object() {
     );
     // A boundary vertex of the paraboloid moves: its combs change.
     let tri = app.doc.scene.objects[1]
-        .surface
+        .surface()
+        .unwrap()
         .ps_basis()
         .unwrap()
         .triangulation()

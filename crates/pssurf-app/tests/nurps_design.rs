@@ -35,7 +35,7 @@ fn the_new_dialog_makes_a_cylinder_of_eight_nurps_patches_in_one_undo_step() {
     assert!(
         objects[before..]
             .iter()
-            .all(|o| o.group == "cylinder" && matches!(*o.surface, Surface::Nurps(_)))
+            .all(|o| o.group == "cylinder" && matches!(**o.surface().unwrap(), Surface::Nurps(_)))
     );
     assert!(
         h.state().status.contains("cylinder (8 patches)"),
@@ -55,23 +55,23 @@ fn the_new_dialog_makes_a_cylinder_of_eight_nurps_patches_in_one_undo_step() {
 fn cusp_and_planar_section_buttons_change_the_selected_control_triangle() {
     let mut h = harness(rational_app());
     press(&mut h, "Cusp");
-    let c = vertex_control(&h.state().doc.scene.objects[1].surface, 3);
+    let c = vertex_control(h.state().doc.scene.objects[1].surface().unwrap(), 3);
     assert!(
         c.points.iter().all(|p| (p - c.points[0]).norm() < 1e-15),
         "{c:?}"
     );
     press(&mut h, "Planar section");
-    let d = vertex_control(&h.state().doc.scene.objects[1].surface, 3);
+    let d = vertex_control(h.state().doc.scene.objects[1].surface().unwrap(), 3);
     let w = d.weights.unwrap();
     let largest = c.weights.unwrap().iter().cloned().fold(0.0, f64::max);
     assert!(w.iter().all(|&x| x == 1e3 * largest), "{w:?}");
     // Two edits, two undo steps.
     h.state_mut().apply(Command::Undo);
     h.state_mut().apply(Command::Undo);
-    let back = vertex_control(&h.state().doc.scene.objects[1].surface, 3);
+    let back = vertex_control(h.state().doc.scene.objects[1].surface().unwrap(), 3);
     assert_eq!(
         back,
-        vertex_control(&rational_app().doc.scene.objects[1].surface, 3)
+        vertex_control(rational_app().doc.scene.objects[1].surface().unwrap(), 3)
     );
 }
 
@@ -80,13 +80,13 @@ fn cusp_and_planar_section_buttons_change_the_selected_control_triangle() {
 #[test]
 fn dragging_the_tangent_point_moves_the_weights() {
     let mut h = harness(rational_app());
-    let before = vertex_control(&h.state().doc.scene.objects[1].surface, 3);
+    let before = vertex_control(h.state().doc.scene.objects[1].surface().unwrap(), 3);
     let label = h.get_by_label_contains("shape parameters").rect();
     // The widget is drawn just above its caption: drag from its centre towards Q1.
     let start = Pos2::new(label.left() + 75.0, label.top() - 60.0);
     let end = Pos2::new(start.x - 40.0, start.y + 30.0);
     support::drag(&mut h, start, end, 10, |_| {});
-    let after = vertex_control(&h.state().doc.scene.objects[1].surface, 3);
+    let after = vertex_control(h.state().doc.scene.objects[1].surface().unwrap(), 3);
     assert_eq!(after.points, before.points);
     assert_ne!(after.weights, before.weights);
     assert!(
@@ -96,7 +96,7 @@ fn dragging_the_tangent_point_moves_the_weights() {
     );
     h.state_mut().apply(Command::Undo);
     assert_eq!(
-        vertex_control(&h.state().doc.scene.objects[1].surface, 3),
+        vertex_control(h.state().doc.scene.objects[1].surface().unwrap(), 3),
         before
     );
 }

@@ -16,7 +16,7 @@ fn undo_resamples_only_the_object_that_changed() {
     let mut app = App::demo();
     app.update_geometry();
     assert_eq!(app.runtime.cache.sampled, 2);
-    let mut c = vertex_control(&app.doc.scene.objects[1].surface, 3);
+    let mut c = vertex_control(app.doc.scene.objects[1].surface().unwrap(), 3);
     c.points[0].z += 0.2;
     app.set_vertex(1, 3, c).unwrap();
     app.update_geometry();
@@ -51,22 +51,22 @@ fn history_snapshots_share_the_surfaces_an_edit_did_not_touch() {
         .scene
         .objects
         .iter()
-        .map(|o| o.surface.clone())
+        .map(|o| o.surface().unwrap().clone())
         .collect();
     app.apply(Command::EditObject {
         object: 1,
         edit: ObjectEdit::Rename("bowl".into()),
     });
-    let mut c = vertex_control(&app.doc.scene.objects[1].surface, 2);
+    let mut c = vertex_control(app.doc.scene.objects[1].surface().unwrap(), 2);
     c.points[1].z -= 0.1;
     app.set_vertex(1, 2, c).unwrap();
     let now = &app.doc.scene.objects;
     assert!(
-        Arc::ptr_eq(&now[0].surface, &original[0]),
+        Arc::ptr_eq(now[0].surface().unwrap(), &original[0]),
         "object 0 was copied"
     );
     assert!(
-        !Arc::ptr_eq(&now[1].surface, &original[1]),
+        !Arc::ptr_eq(now[1].surface().unwrap(), &original[1]),
         "the edit wrote in place"
     );
     app.undo();
@@ -74,7 +74,7 @@ fn history_snapshots_share_the_surfaces_an_edit_did_not_touch() {
     let back = &app.doc.scene.objects;
     for (o, s) in back.iter().zip(&original) {
         assert!(
-            Arc::ptr_eq(&o.surface, s),
+            Arc::ptr_eq(o.surface().unwrap(), s),
             "undo gives back the very surfaces"
         );
     }

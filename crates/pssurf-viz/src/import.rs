@@ -60,8 +60,9 @@ pub fn read_mesh(path: &Path) -> Result<Mesh, ImportError> {
 }
 
 fn read_obj(path: &Path) -> Result<Mesh, String> {
+    // Positions in file order (no merging with texture or normal indices), read as f64.
     let options = tobj::LoadOptions {
-        single_index: true,
+        single_index: false,
         triangulate: false,
         ignore_points: true,
         ignore_lines: true,
@@ -71,10 +72,8 @@ fn read_obj(path: &Path) -> Result<Mesh, String> {
     for m in models {
         let base = mesh.positions.len() as u32;
         let pos = &m.mesh.positions;
-        mesh.positions.extend(
-            pos.chunks_exact(3)
-                .map(|c| Vector3::new(c[0] as f64, c[1] as f64, c[2] as f64)),
-        );
+        mesh.positions
+            .extend(pos.chunks_exact(3).map(|c| Vector3::new(c[0], c[1], c[2])));
         let indices: Vec<u32> = m.mesh.indices.iter().map(|&i| base + i).collect();
         if m.mesh.face_arities.is_empty() {
             for t in indices.chunks_exact(3) {
@@ -174,4 +173,33 @@ fn read_ply(path: &Path) -> Result<Mesh, String> {
         positions,
         triangles,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// OBJ coordinates come back as written, to the last bit (tobj renumbers the vertices in
+    /// the order the faces use them); polygons become fans.
+    #[test]
+    fn obj_positions_are_exact() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.obj");
+        let xs = [0.1, 1.0 / 3.0, 2f64.sqrt(), -7.25e-9];
+        let mut text = String::new();
+        for (k, x) in xs.iter().enumerate() {
+            text.push_str(&format!("v {x} {} {}\n", k as f64 * 0.7, -x));
+        }
+        text.push_str("vt 0 0\nf 4/1 2/1 1/1 3/1\n");
+        std::fs::write(&path, text).unwrap();
+        let m = read_mesh(&path).unwrap();
+        let written = |k: usize| Vector3::new(xs[k], k as f64 * 0.7, -xs[k]);
+        let fan = [[3, 1, 0], [3, 0, 2]];
+        assert_eq!(m.triangles.len(), 2);
+        for (t, f) in m.triangles.iter().zip(fan) {
+            for (v, k) in t.iter().zip(f) {
+                assert_eq!(m.positions[*v as usize], written(k));
+            }
+        }
+    }
 }

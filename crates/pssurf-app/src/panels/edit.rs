@@ -115,6 +115,10 @@ impl Panel for EditPanel {
             return;
         };
         let o = &cx.doc.scene.objects[object];
+        let Some(surface) = o.surface() else {
+            ui.weak("Editing by curvature works on surfaces; the selected object is a mesh.");
+            return;
+        };
         let Some(probe) = cx.probe().filter(|p| p.object == object) else {
             ui.weak("Put the probe on the selected surface (click it) to edit there.");
             return;
@@ -123,14 +127,10 @@ impl Panel for EditPanel {
         cx.emit(Command::MarkRegion(Some(RegionMark {
             id: o.id,
             uv,
-            radius: self.radius(&o.surface, uv),
+            radius: self.radius(surface, uv),
             pass: ui.ctx().cumulative_pass_nr(),
         })));
-        let current = o
-            .surface
-            .jet(uv)
-            .ok()
-            .and_then(|j| self.measure().of(&j.jet));
+        let current = surface.jet(uv).ok().and_then(|j| self.measure().of(&j.jet));
         egui::Grid::new("edit by curvature")
             .num_columns(2)
             .show(ui, |ui| {
@@ -191,7 +191,7 @@ impl Panel for EditPanel {
             self.target = Some(target);
         }
         if drag.drag_started() {
-            self.drag_base = Some(o.surface.clone());
+            self.drag_base = Some(surface.clone());
             cx.emit(Command::StartDrag);
         }
         if drag.dragged()
@@ -219,7 +219,7 @@ impl Panel for EditPanel {
             .on_hover_text("Move the control points within the radius so that the measure takes the target at the probe")
             .clicked()
         {
-            match self.compute(&o.surface, uv, target) {
+            match self.compute(surface, uv, target) {
                 Ok(e) => {
                     self.report = Some(describe(&e));
                     cx.status(format!("edited by curvature: {}", describe(&e)));

@@ -29,10 +29,10 @@ impl Panel for FairingPanel {
             ui.weak("Select a PS, UPS or NURPS surface to fair it.");
             return;
         };
-        if o.surface.ps_basis().is_none() {
+        let Some(surface) = o.surface().filter(|s| s.ps_basis().is_some()) else {
             ui.weak("Fairing works on PS, UPS and NURPS surfaces.");
             return;
-        }
+        };
         ui.horizontal(|ui| {
             let rule = crate::fields::Rule::Within(0.0, 1e9);
             let outcome = crate::fields::labelled(ui, "weight", &mut self.weight, rule, 0.01);
@@ -50,7 +50,7 @@ impl Panel for FairingPanel {
                 weight: self.weight,
                 ..FairOptions::default()
             };
-            match fair(&o.surface, &opts) {
+            match fair(surface, &opts) {
                 Ok(f) => {
                     let status = format!(
                         "faired {}: energy {:.4e} -> {:.4e}, {} control points moved",

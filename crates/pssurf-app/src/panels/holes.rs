@@ -93,7 +93,7 @@ impl HolesPanel {
         let Some(o) = cx.doc.scene.objects.get(probe.object) else {
             return;
         };
-        let Some(side) = nearest_side(&o.surface, probe.uv) else {
+        let Some(side) = o.surface().and_then(|s| nearest_side(s, probe.uv)) else {
             cx.status(format!("{} has no edges", o.name));
             return;
         };
@@ -126,7 +126,10 @@ impl HolesPanel {
                     o.name
                 ));
             }
-            let side = SurfaceEdge::sides(o.surface.clone())
+            let surface = (o.surface().cloned()).ok_or_else(|| {
+                format!("{} is a mesh: holes are filled between surfaces", o.name)
+            })?;
+            let side = SurfaceEdge::sides(surface)
                 .into_iter()
                 .nth(e.side)
                 .ok_or_else(|| format!("{} no longer has that side", e.label))?;

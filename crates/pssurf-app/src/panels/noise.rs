@@ -31,7 +31,7 @@ impl Panel for NoisePanel {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
-        let Some(surface) = cx.object().map(|o| &o.surface) else {
+        let Some(surface) = cx.surface() else {
             ui.weak("Select a surface to perturb its control points.");
             return;
         };

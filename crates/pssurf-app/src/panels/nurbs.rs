@@ -31,7 +31,7 @@ impl Panel for NurbsPanel {
             ui.weak("Select a NURBS surface to approximate it by a UPS surface.");
             return;
         };
-        let Surface::Nurbs(nurbs) = o.surface.as_ref() else {
+        let Some(Surface::Nurbs(nurbs)) = o.surface().map(|s| s.as_ref()) else {
             ui.weak("Select a NURBS surface (File, Import IGES… reads them).");
             return;
         };

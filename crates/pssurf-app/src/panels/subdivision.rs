@@ -1,19 +1,142 @@
-//! Dyadic subdivision of a UPS surface (thesis 4.4): exact, the surface is unchanged.
+//! Subdivision: dyadic subdivision of a UPS surface (thesis 4.4: exact, the surface is
+//! unchanged), and the classic schemes on a mesh object (seed 004: Loop, √3, butterfly),
+//! always applied to its control mesh, so that changing the scheme or the steps never
+//! compounds.
+
+use std::sync::Arc;
 
 use super::{Panel, load_settings, needs_ups, replace_selected, save_settings};
-use crate::command::ViewContext;
+use crate::command::{Command, ViewContext};
+use crate::scene::{MAX_MESH_TRIANGLES, MeshShape};
+use pssurf::subdivision::{RefinedMesh, SurfaceScheme};
 use pssurf::surface::Surface;
 
 /// The subdivision dialog.
 #[derive(Debug, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct SubdivisionPanel {
-    /// Subdivision steps per click.
+    /// Subdivision steps per click (UPS surfaces).
     pub times: usize,
+    /// The scheme for meshes, by its name (loop, sqrt3, butterfly).
+    pub scheme: String,
+    /// The steps from the control mesh (meshes).
+    pub mesh_times: u32,
+    /// Why the last mesh subdivision failed (cleared by the next attempt).
+    #[serde(skip)]
+    pub error: Option<String>,
 }
 
 impl Default for SubdivisionPanel {
     fn default() -> Self {
-        SubdivisionPanel { times: 1 }
+        SubdivisionPanel {
+            times: 1,
+            scheme: SurfaceScheme::Loop.name().into(),
+            mesh_times: 2,
+            error: None,
+        }
+    }
+}
+
+impl SubdivisionPanel {
+    /// The mesh part: scheme, steps, the counts after them, Apply and Reset.
+    fn mesh_ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>, m: &MeshShape) {
+        let c = &m.recipe.control;
+        ui.label(format!(
+            "control mesh: {} vertices, {} triangles",
+            c.positions.len(),
+            c.triangles.len()
+        ));
+        let mut scheme = SurfaceScheme::parse(&self.scheme).unwrap_or(SurfaceScheme::Loop);
+        ui.horizontal(|ui| {
+            ui.label("scheme");
+            egui::ComboBox::from_id_salt("mesh scheme")
+                .selected_text(scheme_label(scheme))
+                .show_ui(ui, |ui| {
+                    for s in SurfaceScheme::ALL {
+                        ui.selectable_value(&mut scheme, s, scheme_label(s));
+                    }
+                });
+            ui.label("steps");
+            ui.add(egui::DragValue::new(&mut self.mesh_times).range(0..=8));
+        });
+        self.scheme = scheme.name().into();
+        let after = scheme.triangles_after(c.triangles.len(), self.mesh_times);
+        let too_many = after > MAX_MESH_TRIANGLES as f64;
+        if too_many {
+            ui.colored_label(
+                egui::Color32::DARK_RED,
+                format!(
+                    "{} step(s) would make about {} triangles, more than {} million.",
+                    self.mesh_times,
+                    crate::fields::compact(after),
+                    MAX_MESH_TRIANGLES / 1_000_000
+                ),
+            );
+        } else {
+            ui.weak(format!("{} triangles after", crate::fields::compact(after)));
+        }
+        let same = m.recipe.scheme == scheme && m.recipe.times == self.mesh_times;
+        ui.horizontal(|ui| {
+            let apply = ui
+                .add_enabled(!too_many && !same, egui::Button::new("Subdivide"))
+                .on_hover_text("Refine the control mesh by the scheme, the chosen number of steps");
+            if apply.clicked() {
+                let recipe = RefinedMesh {
+                    control: c.clone(),
+                    scheme,
+                    times: self.mesh_times,
+                };
+                self.replace(cx, recipe);
+            }
+            let reset = ui
+                .add_enabled(m.recipe.times > 0, egui::Button::new("Control mesh"))
+                .on_hover_text("Show the control mesh itself (no steps)");
+            if reset.clicked() {
+                self.replace(cx, RefinedMesh::new(c.clone()));
+            }
+        });
+        if let Some(e) = &self.error {
+            ui.colored_label(egui::Color32::DARK_RED, e);
+        }
+    }
+
+    /// Asks to show `recipe` on the selected mesh (one undo step), or says why it cannot.
+    fn replace(&mut self, cx: &mut ViewContext<'_>, recipe: RefinedMesh) {
+        let Some(object) = cx.selected() else {
+            return;
+        };
+        let (scheme, times) = (recipe.scheme, recipe.times);
+        match MeshShape::new(recipe) {
+            Ok(mesh) => {
+                self.error = None;
+                let status = if times == 0 {
+                    "the control mesh".to_string()
+                } else {
+                    format!(
+                        "{} × {}: {} triangles",
+                        times,
+                        scheme.name(),
+                        mesh.refined.triangles.len()
+                    )
+                };
+                cx.emit(Command::ReplaceMesh {
+                    object,
+                    what: "subdivide mesh",
+                    mesh: Arc::new(mesh),
+                    status,
+                });
+            }
+            Err(e) => self.error = Some(format!("cannot subdivide: {e}")),
+        }
+    }
+}
+
+/// A scheme's name in the interface.
+fn scheme_label(s: SurfaceScheme) -> &'static str {
+    match s {
+        SurfaceScheme::Loop => "Loop",
+        SurfaceScheme::Sqrt3 => "√3 (Kobbelt)",
+        SurfaceScheme::Butterfly => "butterfly",
     }
 }
 
@@ -23,8 +146,13 @@ impl Panel for SubdivisionPanel {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, cx: &mut ViewContext<'_>) {
+        if let Some(m) = cx.mesh() {
+            return self.mesh_ui(ui, cx, m);
+        }
         let Some(u) = cx.uniform() else {
-            return needs_ups(ui);
+            needs_ups(ui);
+            ui.weak("A mesh (File, Import mesh…) is refined by Loop, √3 or butterfly here.");
+            return;
         };
         let n = u.grid().vertex_count();
         ui.label(format!(
@@ -66,6 +194,10 @@ impl Panel for SubdivisionPanel {
     fn restore(&mut self, settings: &serde_json::Value) {
         if let Some(s) = load_settings::<SubdivisionPanel>(settings) {
             self.times = s.times.clamp(1, 4);
+            self.mesh_times = s.mesh_times.min(8);
+            if SurfaceScheme::parse(&s.scheme).is_some() {
+                self.scheme = s.scheme;
+            }
         }
     }
 }

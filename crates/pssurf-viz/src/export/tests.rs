@@ -252,9 +252,9 @@ fn obj_reads_back_with_tobj() {
             let i = m.indices[3 * k + v] as usize;
             let p = d.mesh.positions[t[v] as usize];
             for c in 0..3 {
-                assert!(close32(m.positions[3 * i + c] as f64, p[c]));
+                assert!(close32(m.positions[3 * i + c], p[c]));
                 assert!(close32(
-                    m.normals[3 * i + c] as f64,
+                    m.normals[3 * i + c],
                     d.mesh.normals[t[v] as usize][c]
                 ));
             }

@@ -32,11 +32,7 @@ impl RefinedMesh {
     /// The number of triangles after the steps (each multiplies them by 4, or by 3 for √3),
     /// as a float so that absurd requests do not overflow.
     pub fn triangles_after(&self) -> f64 {
-        let factor: f64 = match self.scheme {
-            SurfaceScheme::Sqrt3 => 3.0,
-            SurfaceScheme::Loop | SurfaceScheme::Butterfly => 4.0,
-        };
-        self.control.triangles.len() as f64 * factor.powi(self.times.min(64) as i32)
+        (self.scheme).triangles_after(self.control.triangles.len(), self.times)
     }
 
     /// The refined mesh: the control mesh after `times` steps of the scheme. The control mesh

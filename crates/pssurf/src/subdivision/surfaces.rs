@@ -52,6 +52,16 @@ impl SurfaceScheme {
         })
     }
 
+    /// The number of triangles after `times` steps from `triangles` (each step multiplies
+    /// them by 4, or by 3 for √3), as a float so that absurd requests do not overflow.
+    pub fn triangles_after(self, triangles: usize, times: u32) -> f64 {
+        let factor: f64 = match self {
+            SurfaceScheme::Sqrt3 => 3.0,
+            SurfaceScheme::Loop | SurfaceScheme::Butterfly => 4.0,
+        };
+        triangles as f64 * factor.powi(times.min(64) as i32)
+    }
+
     /// The vertex and triangle counts after one step of a mesh with `v` vertices, `e` edges
     /// (`eb` of them on the boundary) and `t` triangles.
     pub fn counts_after(self, v: usize, e: usize, eb: usize, t: usize) -> (usize, usize) {
