@@ -478,6 +478,13 @@ impl App {
             .update(&self.doc.scene, &self.view.display);
     }
 
+    /// Like [`App::update_geometry`], but a large rebuild runs on another thread while the
+    /// previous geometry stays drawn (see [`crate::cache::GeometryCache::update_in_background`]);
+    /// what the view does each frame.
+    pub fn update_geometry_in_background(&mut self) {
+        (self.runtime.cache).update_in_background(&self.doc.scene, &self.view.display);
+    }
+
     /// The cached mesh of an object (after [`App::update_geometry`]).
     pub fn object_mesh(&self, i: usize) -> Option<&ObjectMesh> {
         self.runtime.cache.object_mesh(&self.doc.scene, i)
@@ -622,12 +629,16 @@ impl App {
                 surface,
                 status,
             } => self.replace_shape(object, what, Shape::Surface(Arc::new(*surface)), status),
+            Command::InBackground { what, work } => self.start_task(what, work),
             Command::ReplaceMesh {
-                object,
+                id,
                 what,
                 mesh,
                 status,
-            } => self.replace_shape(object, what, Shape::Mesh(mesh), status),
+            } => match self.doc.scene.index_of(id) {
+                Some(object) => self.replace_shape(object, what, Shape::Mesh(mesh), status),
+                None => self.status = "not subdivided: the mesh was deleted meanwhile".into(),
+            },
             Command::ReplaceSurfaces {
                 surfaces,
                 what,
@@ -783,6 +794,52 @@ impl App {
         self.pending_frame = Some(FrameTarget::All);
     }
 
+    /// Starts a computation on another thread (one at a time).
+    fn start_task(&mut self, what: String, work: crate::command::BackgroundWork) {
+        if let Some(t) = &self.runtime.task {
+            self.status = format!("wait: {} is still running", t.what);
+            return;
+        }
+        let Some(work) = work.take() else {
+            return;
+        };
+        let (send, result) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            // The receiver is gone only when the application has closed.
+            let _ = send.send(work());
+        });
+        self.runtime.task = Some(crate::runtime::BackgroundTask {
+            what,
+            started: std::time::Instant::now(),
+            result,
+        });
+    }
+
+    /// Whether a background rebuild or task is still running (the busy indicator shows).
+    pub fn is_busy(&self) -> bool {
+        self.runtime.task.is_some() || self.runtime.cache.busy().is_some()
+    }
+
+    /// Applies the command of a finished background task; whether one still runs.
+    pub fn poll_task(&mut self) -> bool {
+        let Some(task) = &self.runtime.task else {
+            return false;
+        };
+        match task.result.try_recv() {
+            Ok(command) => {
+                self.runtime.task = None;
+                self.apply(command);
+                false
+            }
+            Err(std::sync::mpsc::TryRecvError::Empty) => true,
+            Err(std::sync::mpsc::TryRecvError::Disconnected) => {
+                self.status = format!("{} failed", task.what);
+                self.runtime.task = None;
+                false
+            }
+        }
+    }
+
     fn replace_shape(&mut self, object: usize, what: &str, shape: Shape, status: String) {
         if object >= self.doc.scene.objects.len() {
             return;
@@ -840,7 +897,13 @@ impl App {
         self.window_events(ui.ctx());
         let mut commands = self.shortcuts(ui.ctx());
         self.autosave_tick(ui.ctx());
-        self.update_geometry();
+        let task_running = self.poll_task();
+        self.update_geometry_in_background();
+        if task_running || self.runtime.cache.busy().is_some() {
+            // Poll the background rebuild; the spinner turns meanwhile.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(50));
+        }
         self.refresh_probe();
         self.draw(ui, &mut commands);
         if !commands.is_empty() {
@@ -895,7 +958,10 @@ impl App {
                 Some(_) => rect.split_left_right_at_x(rect.right() - crate::legend::WIDTH),
                 None => (rect, Rect::NOTHING),
             };
-            if let Some(target) = self.pending_frame.take() {
+            // Framing waits for the geometry it frames.
+            if self.runtime.cache.busy().is_none()
+                && let Some(target) = self.pending_frame.take()
+            {
                 self.frame(target, view.width() / view.height().max(1.0));
             }
             if let Some(legend) = &legend {
@@ -962,6 +1028,16 @@ impl App {
         egui::Panel::top("menu").show(ui, |ui| views.menu.ui(ui, &mut cx));
         egui::Panel::bottom("status").show(ui, |ui| {
             ui.horizontal(|ui| {
+                if let Some(task) = &cx.runtime.task {
+                    ui.spinner();
+                    ui.label(format!("{}…", task.what));
+                    ui.separator();
+                }
+                if let Some(busy) = cx.runtime.cache.busy() {
+                    ui.spinner();
+                    ui.label(busy.message());
+                    ui.separator();
+                }
                 ui.label(status);
                 if let Some(p) = cx.probe() {
                     ui.separator();

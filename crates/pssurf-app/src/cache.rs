@@ -35,6 +35,59 @@ pub struct GeometryCache {
     /// How many object meshes were sampled since the start (a mesh is sampled again only
     /// when its object or the sampling settings change).
     pub sampled: usize,
+    /// The settings the meshes in `meshes` were sampled with.
+    sampled_with: Option<DisplaySettings>,
+    /// The meshing running on another thread, if any (see
+    /// [`GeometryCache::update_in_background`]).
+    job: Option<MeshingJob>,
+}
+
+/// Rebuilds estimated to make more triangles than this run on another thread when the view
+/// asks (about 0.1 s of sampling on 2 cores); smaller ones are done at once.
+pub const BACKGROUND_TRIANGLES: f64 = 250_000.0;
+
+/// Objects being meshed on another thread, for the busy indicator and to take the result.
+struct MeshingJob {
+    /// The sampling settings.
+    settings: DisplaySettings,
+    /// The revisions of the objects being meshed.
+    revisions: Vec<u64>,
+    /// What the job does, for the busy indicator.
+    busy: Busy,
+    /// The meshes, when done.
+    result: std::sync::mpsc::Receiver<Vec<(u64, ObjectMesh)>>,
+}
+
+/// What a background rebuild is doing: shown beside a spinner while it runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Busy {
+    /// How many objects are being meshed.
+    pub objects: usize,
+    /// About how many triangles they make.
+    pub triangles: f64,
+    /// When it started.
+    pub started: std::time::Instant,
+}
+
+impl Busy {
+    /// The status message, e.g. "meshing 2 objects, about 3.1 million triangles…".
+    pub fn message(&self) -> String {
+        let what = if self.objects == 1 {
+            "1 object".to_string()
+        } else {
+            format!("{} objects", self.objects)
+        };
+        let t = self.triangles;
+        let count = if t >= 1e6 {
+            format!(
+                "{} million",
+                crate::fields::compact((t / 1e5).round() / 10.0)
+            )
+        } else {
+            crate::fields::compact(t.round())
+        };
+        format!("meshing {what}, about {count} triangles…")
+    }
 }
 
 /// Where one object's data starts in the combined [`FrameGeometry`].
@@ -129,8 +182,25 @@ impl GeometryCache {
         self.stale_colors
     }
 
-    /// Rebuilds the geometry if the scene or the display settings changed.
+    /// Rebuilds the geometry if the scene or the display settings changed, at once (waiting
+    /// for nothing: a background rebuild still running is left to finish unused).
     pub fn update(&mut self, scene: &Scene, display: &DisplaySettings) {
+        self.update_with(scene, display, false);
+    }
+
+    /// Like [`GeometryCache::update`], but a rebuild of more than [`BACKGROUND_TRIANGLES`]
+    /// runs on another thread: until it is done the previous geometry stays drawn and
+    /// [`GeometryCache::busy`] says what is being meshed. Call it every frame.
+    pub fn update_in_background(&mut self, scene: &Scene, display: &DisplaySettings) {
+        self.update_with(scene, display, true);
+    }
+
+    /// What a background rebuild is doing, while one runs.
+    pub fn busy(&self) -> Option<&Busy> {
+        self.job.as_ref().map(|j| &j.busy)
+    }
+
+    fn update_with(&mut self, scene: &Scene, display: &DisplaySettings, background: bool) {
         let key: Vec<(u64, bool)> = scene
             .objects
             .iter()
@@ -138,27 +208,36 @@ impl GeometryCache {
             .collect();
         let current = Some((key.clone(), display.clone()));
         if self.key == current && (!self.stale_colors || self.hold_colors) {
+            self.job = None;
             return;
         }
-        self.stale_colors = false;
         // Colour map and range changes only recolour; these need new samples.
-        let sampling_changed = self.key.as_ref().is_none_or(|(_, d)| {
-            d.level != display.level
-                || d.overlays != display.overlays
-                || d.mesh_edges != display.mesh_edges
-                || d.mode != display.mode
-        });
-        if sampling_changed {
+        if self
+            .sampled_with
+            .as_ref()
+            .is_none_or(|d| !same_sampling(d, display))
+        {
             self.meshes.clear();
+            self.sampled_with = Some(display.clone());
         }
+        self.take_finished_job(display);
         let live: std::collections::HashSet<u64> = key.iter().map(|k| k.0).collect();
         self.meshes.retain(|r, _| live.contains(r));
-        for (_, o) in scene.visible() {
-            if let std::collections::hash_map::Entry::Vacant(slot) = self.meshes.entry(o.revision) {
-                slot.insert(display::object_mesh(o, display));
-                self.sampled += 1;
-            }
+        let missing: Vec<&crate::scene::SceneObject> = (scene.visible())
+            .map(|(_, o)| o)
+            .filter(|o| !self.meshes.contains_key(&o.revision))
+            .collect();
+        let triangles: f64 = missing.iter().map(|o| triangles_of(o, display)).sum();
+        if background && triangles > BACKGROUND_TRIANGLES {
+            return self.mesh_in_background(&missing, display, triangles);
         }
+        self.job = None;
+        for o in missing {
+            self.meshes
+                .insert(o.revision, display::object_mesh(o, display));
+            self.sampled += 1;
+        }
+        self.stale_colors = false;
         let visible: Vec<(usize, u64)> = scene.visible().map(|(i, o)| (i, o.revision)).collect();
         // Sizes and colour scales come from the drawn objects only (not the hidden ones
         // still cached).
@@ -209,6 +288,65 @@ impl GeometryCache {
         self.key = current;
     }
 
+    /// Starts meshing `objects` on another thread, unless a job for the same objects and
+    /// sampling runs already; the geometry stays as it is meanwhile.
+    fn mesh_in_background(
+        &mut self,
+        objects: &[&crate::scene::SceneObject],
+        display: &DisplaySettings,
+        triangles: f64,
+    ) {
+        let revisions: Vec<u64> = objects.iter().map(|o| o.revision).collect();
+        if self
+            .job
+            .as_ref()
+            .is_some_and(|j| j.revisions == revisions && same_sampling(&j.settings, display))
+        {
+            return;
+        }
+        let (send, result) = std::sync::mpsc::channel();
+        let owned: Vec<crate::scene::SceneObject> = objects.iter().map(|&o| o.clone()).collect();
+        let settings = display.clone();
+        std::thread::spawn(move || {
+            let meshes: Vec<(u64, ObjectMesh)> = (owned.iter())
+                .map(|o| (o.revision, display::object_mesh(o, &settings)))
+                .collect();
+            // The receiver is gone when the job was superseded: nothing to do then.
+            let _ = send.send(meshes);
+        });
+        self.job = Some(MeshingJob {
+            settings: display.clone(),
+            revisions,
+            busy: Busy {
+                objects: objects.len(),
+                triangles,
+                started: std::time::Instant::now(),
+            },
+            result,
+        });
+    }
+
+    /// Takes the meshes of a finished background job, when they were sampled as `display`
+    /// samples (a job for other settings is dropped).
+    fn take_finished_job(&mut self, display: &DisplaySettings) {
+        let Some(job) = &self.job else {
+            return;
+        };
+        if !same_sampling(&job.settings, display) {
+            self.job = None;
+            return;
+        }
+        match job.result.try_recv() {
+            Ok(meshes) => {
+                self.sampled += meshes.len();
+                self.meshes.extend(meshes);
+                self.job = None;
+            }
+            Err(std::sync::mpsc::TryRecvError::Empty) => {}
+            Err(std::sync::mpsc::TryRecvError::Disconnected) => self.job = None,
+        }
+    }
+
     /// The cached mesh of object `i` of `scene` (after [`GeometryCache::update`]).
     pub fn object_mesh(&self, scene: &Scene, i: usize) -> Option<&ObjectMesh> {
         scene
@@ -234,5 +372,26 @@ impl GeometryCache {
             .filter(|(_, visible)| *visible)
             .filter_map(|(r, _)| self.meshes.get(r));
         display::bounds(drawn)
+    }
+}
+
+/// Whether meshes sampled with `a` serve `b` (the colour map and range only recolour).
+fn same_sampling(a: &DisplaySettings, b: &DisplaySettings) -> bool {
+    a.level == b.level
+        && a.overlays == b.overlays
+        && a.mesh_edges == b.mesh_edges
+        && a.mode == b.mode
+}
+
+/// About how many triangles an object's display mesh has.
+fn triangles_of(o: &crate::scene::SceneObject, display: &DisplaySettings) -> f64 {
+    match &o.shape {
+        crate::scene::Shape::Surface(s) => {
+            use pssurf::surface::PiecewiseSurface;
+            let level = display::display_level(o, display);
+            let per = pssurf::interrogate::triangles_per_piece(s.piece_kind(), level);
+            s.piece_count() as f64 * per as f64
+        }
+        crate::scene::Shape::Mesh(m) => m.refined.triangles.len() as f64,
     }
 }

@@ -75,9 +75,43 @@ pub enum ExportKind {
     Surface,
 }
 
+/// Work for another thread: a computation that takes longer than a frame and ends in the
+/// command to apply (see [`Command::InBackground`]). Cloning shares it; it runs once.
+#[derive(Clone)]
+pub struct BackgroundWork(Arc<std::sync::Mutex<Option<BoxedWork>>>);
+
+/// The computation of a [`BackgroundWork`].
+type BoxedWork = Box<dyn FnOnce() -> Command + Send>;
+
+impl BackgroundWork {
+    /// Wraps a computation.
+    pub fn new(work: impl FnOnce() -> Command + Send + 'static) -> Self {
+        BackgroundWork(Arc::new(std::sync::Mutex::new(Some(Box::new(work)))))
+    }
+
+    /// The computation, the first time it is asked for.
+    pub fn take(&self) -> Option<BoxedWork> {
+        self.0.lock().ok()?.take()
+    }
+}
+
+impl std::fmt::Debug for BackgroundWork {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("BackgroundWork")
+    }
+}
+
 /// A request from a view or panel, applied after the frame.
 #[derive(Clone, Debug)]
 pub enum Command {
+    /// Run `work` on another thread, with a spinner saying `what` in the status bar, and
+    /// apply the command it ends in (one task at a time: another is refused meanwhile).
+    InBackground {
+        /// What runs, for the busy indicator ("subdividing: loop × 4").
+        what: String,
+        /// The computation.
+        work: BackgroundWork,
+    },
     /// Select an object and possibly one of its vertices.
     Select(Selection),
     /// Put the probe on an object at parameters `uv` (removes it outside the domain).
@@ -184,8 +218,9 @@ pub enum Command {
     },
     /// Replace a mesh object's mesh (a new subdivision) as one undoable edit.
     ReplaceMesh {
-        /// The object's index.
-        object: usize,
+        /// The object's identity ([`SceneObject::id`]: the result of a background task must
+        /// find its object even if others were added or deleted meanwhile).
+        id: u64,
         /// The edit's name for the Edit menu.
         what: &'static str,
         /// The new mesh.

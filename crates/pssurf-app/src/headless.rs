@@ -20,9 +20,16 @@ pub fn harness(mut app: App, width: f32, height: f32) -> Harness<'static, App> {
         .build_ui_state(|ui, app: &mut App| app.ui(ui), app)
 }
 
-/// Renders the application once and returns the picture.
+/// Renders the application once, after any background meshing or task has ended, and
+/// returns the picture.
 pub fn screenshot(app: App, width: f32, height: f32) -> Result<image::RgbaImage, String> {
     let mut h = harness(app, width, height);
+    h.run_steps(2);
+    while h.state().is_busy() {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.run_steps(1);
+    }
+    // Framing and colour scales settle in the frames after the geometry arrives.
     h.run_steps(4);
     h.render()
 }

@@ -45,6 +45,18 @@ pub struct Runtime {
     /// The wgpu device and queue, when the 3D view's GPU resources are installed (the view
     /// and the picture export need them).
     pub gpu: Option<RenderState>,
+    /// The task running on another thread, if any (`Command::InBackground`).
+    pub task: Option<BackgroundTask>,
+}
+
+/// A computation running on another thread, ending in a command to apply.
+pub struct BackgroundTask {
+    /// What runs, for the busy indicator.
+    pub what: String,
+    /// When it started.
+    pub started: std::time::Instant,
+    /// The command it ends in.
+    pub result: std::sync::mpsc::Receiver<crate::command::Command>,
 }
 
 impl Runtime {

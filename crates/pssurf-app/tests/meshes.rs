@@ -118,8 +118,9 @@ fn mesh_objects_save_in_scenes_and_export_with_their_curvature() {
         ..m.recipe.clone()
     };
     let shape = pssurf_app::scene::MeshShape::new(recipe.clone()).unwrap();
+    let id = app.doc.scene.objects[0].id;
     app.apply(Command::ReplaceMesh {
-        object: 0,
+        id,
         what: "subdivide mesh",
         mesh: std::sync::Arc::new(shape),
         status: String::new(),

@@ -101,34 +101,56 @@ impl SubdivisionPanel {
     }
 
     /// Asks to show `recipe` on the selected mesh (one undo step), or says why it cannot.
+    /// A large subdivision (more than `BACKGROUND_TRIANGLES`) runs on another thread and
+    /// reports a failure in the status line.
     fn replace(&mut self, cx: &mut ViewContext<'_>, recipe: RefinedMesh) {
-        let Some(object) = cx.selected() else {
+        let Some(object) = cx.object().map(|o| o.id) else {
             return;
         };
+        self.error = None;
         let (scheme, times) = (recipe.scheme, recipe.times);
-        match MeshShape::new(recipe) {
-            Ok(mesh) => {
-                self.error = None;
-                let status = if times == 0 {
-                    "the control mesh".to_string()
-                } else {
-                    format!(
-                        "{} × {}: {} triangles",
-                        times,
-                        scheme.name(),
-                        mesh.refined.triangles.len()
-                    )
-                };
-                cx.emit(Command::ReplaceMesh {
-                    object,
-                    what: "subdivide mesh",
-                    mesh: Arc::new(mesh),
-                    status,
-                });
-            }
-            Err(e) => self.error = Some(format!("cannot subdivide: {e}")),
+        let after = recipe.triangles_after();
+        if after > crate::cache::BACKGROUND_TRIANGLES {
+            let what = format!(
+                "subdividing: {} × {}, about {} triangles",
+                times,
+                scheme.name(),
+                crate::fields::compact(after)
+            );
+            let work = move || mesh_command(object, recipe).unwrap_or_else(Command::Status);
+            cx.emit(Command::InBackground {
+                what,
+                work: crate::command::BackgroundWork::new(work),
+            });
+            return;
+        }
+        match mesh_command(object, recipe) {
+            Ok(command) => cx.emit(command),
+            Err(e) => self.error = Some(e),
         }
     }
+}
+
+/// The command that shows `recipe` on mesh object `object`, or why it cannot be made.
+fn mesh_command(id: u64, recipe: RefinedMesh) -> Result<Command, String> {
+    let (scheme, times) = (recipe.scheme, recipe.times);
+    let mesh = MeshShape::new(recipe).map_err(|e| format!("cannot subdivide: {e}"))?;
+    let status = if times == 0 {
+        "the control mesh".to_string()
+    } else {
+        format!(
+            "{} × {}: {} triangles",
+            times,
+            scheme.name(),
+            mesh.refined.triangles.len()
+        )
+    };
+    Ok(Command::ReplaceMesh {
+        id,
+        what: "subdivide mesh",
+        mesh: Arc::new(mesh),
+        status,
+    })
 }
 
 /// A scheme's name in the interface.
