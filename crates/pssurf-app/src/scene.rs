@@ -140,6 +140,10 @@ pub enum Shape {
     Mesh(Arc<MeshShape>),
 }
 
+/// The largest mesh file the application reads (1 GiB: a text OBJ of [`MAX_MESH_TRIANGLES`]
+/// triangles takes about 200 MB, and reading holds a few times the file in memory).
+pub const MAX_MESH_FILE_BYTES: u64 = 1 << 30;
+
 /// The most triangles a mesh object may have after its subdivision (what the view draws of
 /// one object; the same bound as a sampled surface).
 pub const MAX_MESH_TRIANGLES: usize = 4_000_000;
@@ -175,11 +179,16 @@ impl MeshShape {
     pub fn new(recipe: RefinedMesh) -> Result<MeshShape, String> {
         let after = recipe.triangles_after();
         if after > MAX_MESH_TRIANGLES as f64 {
+            let what = match recipe.times {
+                0 => format!("the mesh has {} triangles", recipe.control.triangles.len()),
+                n => format!(
+                    "{n} step(s) of {} would make about {} triangles",
+                    recipe.scheme.name(),
+                    crate::fields::compact(after)
+                ),
+            };
             return Err(format!(
-                "{} step(s) of {} would make about {} triangles, more than the {} million a mesh object may have",
-                recipe.times,
-                recipe.scheme.name(),
-                crate::fields::compact(after),
+                "{what}, more than the {} million a mesh object may have",
                 MAX_MESH_TRIANGLES / 1_000_000
             ));
         }
@@ -611,7 +620,7 @@ impl Scene {
     }
 
     /// The triangle mesh of an OBJ, PLY or STL file as one mesh object named after the file,
-    /// not subdivided (at most [`MAX_FILE_BYTES`] and [`MAX_MESH_TRIANGLES`] triangles).
+    /// not subdivided (at most [`MAX_MESH_FILE_BYTES`] and [`MAX_MESH_TRIANGLES`] triangles).
     pub fn from_mesh_file(path: &Path) -> Result<Scene, SceneError> {
         let shown = path.display().to_string();
         let meta = std::fs::metadata(path).map_err(|source| SceneError::Io {
@@ -625,9 +634,9 @@ impl Scene {
         if !meta.is_file() {
             return Err(invalid("is not a regular file".into()));
         }
-        if meta.len() > MAX_FILE_BYTES {
+        if meta.len() > MAX_MESH_FILE_BYTES {
             return Err(invalid(format!(
-                "{} bytes, more than the {MAX_FILE_BYTES} the application opens",
+                "{} bytes, more than the {MAX_MESH_FILE_BYTES} of a mesh file the application opens (a mesh object has at most {MAX_MESH_TRIANGLES} triangles)",
                 meta.len()
             )));
         }
@@ -888,5 +897,26 @@ mod binary_files {
         std::fs::write(&path, &bytes[..bytes.len() / 2]).unwrap();
         let e = Scene::load_file(&path).unwrap_err().to_string();
         assert!(e.contains("one.psb") && e.contains("truncated"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod mesh_objects {
+    use super::*;
+
+    /// A subdivision beyond the mesh object's size is refused before anything is computed,
+    /// with the count in the message.
+    #[test]
+    fn oversized_subdivisions_are_refused_in_words() {
+        let recipe = RefinedMesh {
+            control: Mesh::octahedron(),
+            scheme: pssurf::subdivision::SurfaceScheme::Loop,
+            times: 10,
+        };
+        let e = MeshShape::new(recipe).unwrap_err();
+        assert!(
+            e.contains("10 step(s) of loop") && e.contains("more than the 4 million"),
+            "{e}"
+        );
     }
 }
