@@ -13,21 +13,14 @@ Usage: pip install ./crates/pssurf-py scipy matplotlib
        python3 benches/gradient_sources.py local,global,ctgrad,knn14
 """
 import sys, numpy as np
-from matplotlib import cbook
 from scipy.interpolate import CloughTocher2DInterpolator
 from scipy.interpolate._interpnd import estimate_gradients_2d_global
-from scipy.spatial import ConvexHull, Delaunay, cKDTree
+from scipy.spatial import Delaunay, cKDTree
 import pssurf
 
-def datasets():
-    dem = cbook.get_sample_data("jacksboro_fault_dem.npz")
-    yield "jacksboro", dem["elevation"].astype(float)
-    topo = cbook.get_sample_data("topobathy.npz")
-    yield "topobathy", topo["topo"].astype(float)
+# The data sets and the hull distance of the accuracy benchmark (this script's folder).
+from accuracy_real_data import datasets, hull_distance
 
-def hull_distance(train, pts):
-    hull = ConvexHull(train); eq = hull.equations
-    return np.min(-(pts @ eq[:, :2].T + eq[:, 2]), axis=1)
 
 def knn_quad(train, z, k, w_pow=1.0):
     tree = cKDTree(train)

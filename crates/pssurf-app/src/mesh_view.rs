@@ -2,7 +2,7 @@
 //! zebra stripes and shading read the same as on a surface), coloured in a curvature plot by
 //! the discrete curvatures per vertex, with its edges and its control mesh as overlays.
 
-use pssurf::interrogate::CurvatureQuantity;
+use pssurf::interrogate::{CurvatureQuantity, PrincipalCurvatures};
 use pssurf::subdivision::Mesh;
 
 use crate::display::{
@@ -57,25 +57,12 @@ pub fn mesh_object_mesh(o: &SceneObject, m: &MeshShape, settings: &DisplaySettin
     }
 }
 
-/// A curvature quantity from the discrete Gaussian and mean curvatures: K and H as they are,
-/// κ1,2 = H ± √(max(H² − K, 0)) (κ1 ≥ κ2) and |κ1| + |κ2|. NaN where they are (boundary).
+/// A curvature quantity per vertex from the discrete Gaussian and mean curvatures
+/// (`PrincipalCurvatures::from_gaussian_mean`). NaN where they are (boundary).
 pub fn discrete_quantity(c: &DiscreteCurvature, q: CurvatureQuantity) -> Vec<f64> {
-    let spread = |k: f64, h: f64| (h * h - k).max(0.0).sqrt();
-    let each = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
-        (c.gaussian.iter().zip(&c.mean))
-            .map(|(&k, &h)| f(k, h))
-            .collect()
-    };
-    match q {
-        CurvatureQuantity::Gaussian => c.gaussian.clone(),
-        CurvatureQuantity::Mean => c.mean.clone(),
-        CurvatureQuantity::K1 => each(&|k, h| h + spread(k, h)),
-        CurvatureQuantity::K2 => each(&|k, h| h - spread(k, h)),
-        CurvatureQuantity::Absolute => each(&|k, h| {
-            let d = spread(k, h);
-            (h + d).abs() + (h - d).abs()
-        }),
-    }
+    (c.gaussian.iter().zip(&c.mean))
+        .map(|(&k, &h)| PrincipalCurvatures::from_gaussian_mean(k, h).get(q))
+        .collect()
 }
 
 /// Appends every edge of a mesh once, as line segments in `color`.

@@ -123,6 +123,10 @@ fn the_comb_of_an_arc_is_constant() {
     let poly = s(&write(d.path(), "p.csv", "x,y\n0,0\n1,0\n1,0\n"));
     let msg = fails(&["curve", &poly, "--comb", "-o", &s(&d.path().join("x.svg"))]);
     assert_eq!(msg.trim().lines().count(), 1, "{msg}");
+    let huge = s(&write(d.path(), "huge.csv", "x,y\n0,0\n1e308,0\n0,1\n"));
+    let msg = fails(&["curve", &huge, "--comb", "-o", &s(&d.path().join("x.csv"))]);
+    assert!(msg.contains("row 2") && msg.contains("1e60"), "{msg}");
+    assert!(!d.path().join("x.csv").exists());
     let png = d.path().join("comb.png");
     ok_report(&["curve", &arc, "--comb", "-o", &s(&png)]);
     let img = image::open(&png).unwrap().to_rgb8();

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::{Result, anyhow};
-use nalgebra::{Point2, Vector3};
+use nalgebra::Point2;
 use pssurf::interrogate::{CurvatureQuantity, PrincipalCurvatures, SampledSurface};
 use pssurf::io::Durability;
 use pssurf::mesh::TriMesh;
@@ -59,36 +59,16 @@ struct Panel {
 /// A subdivided mesh as a sampled surface with its discrete curvatures.
 fn sampled_mesh(mesh: Mesh) -> Result<SampledSurface> {
     let (k, h) = discrete_curvature(&mesh)?;
-    let mut normals = vec![Vector3::zeros(); mesh.positions.len()];
-    for t in &mesh.triangles {
-        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-        let f = (b - a).cross(&(c - a));
-        for &v in t {
-            normals[v as usize] += f;
-        }
-    }
-    let curvature = k
-        .iter()
-        .zip(&h)
-        .map(|(&k, &h)| {
-            let d = (h * h - k).max(0.0).sqrt();
-            PrincipalCurvatures {
-                gaussian: k,
-                mean: h,
-                k1: h + d,
-                k2: h - d,
-            }
-        })
+    let normals = mesh.vertex_normals();
+    let curvature = (k.iter().zip(&h))
+        .map(|(&k, &h)| PrincipalCurvatures::from_gaussian_mean(k, h))
         .collect();
     Ok(SampledSurface {
         patch: vec![0; mesh.positions.len()],
         curvature,
         mesh: TriMesh {
             uvs: vec![Point2::origin(); mesh.positions.len()],
-            normals: normals
-                .into_iter()
-                .map(|n| n.try_normalize(0.0).unwrap_or_default())
-                .collect(),
+            normals,
             positions: mesh.positions,
             triangles: mesh.triangles,
         },

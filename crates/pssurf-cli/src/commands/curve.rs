@@ -27,8 +27,9 @@ pub enum SchemeArg {
 /// Arguments of `pssurf curve`.
 #[derive(clap::Args, Debug)]
 pub struct CurveArgs {
-    /// The polygon (a CSV file with columns x, y and optionally z) for --subdivide, or a
-    /// curve file (docs/format.md, "Curves") for --comb.
+    /// The polygon (a CSV file with columns x, y and optionally z) for --subdivide; for
+    /// --comb a curve file (docs/format.md, "Curves"), a polygon, or the curves `pssurf
+    /// trace` writes (curve,u,v,x,y,z).
     #[arg(value_name = "POLYGON.csv|CURVE.json")]
     pub input: PathBuf,
     /// The subdivision scheme.
@@ -148,13 +149,20 @@ fn read_polylines(path: &std::path::Path) -> Result<Vec<Vec<Vector3<f64>>>> {
     let (z, curve) = (table.column("z"), table.column("curve"));
     let mut lines: Vec<Vec<Vector3<f64>>> = Vec::new();
     let mut current = None;
-    for r in &table.rows {
+    for (k, r) in table.rows.iter().enumerate() {
+        let p = Vector3::new(r[x], r[y], z.map_or(0.0, |z| r[z]));
+        if !p.iter().all(|c| c.abs() <= pssurf::limits::MAX_VALUE) {
+            bail!(
+                "{}: row {}: a coordinate beyond ±1e60 (the library's limit)",
+                path.display(),
+                k + 1
+            );
+        }
         let id = curve.map(|c| r[c]);
         if lines.is_empty() || id != current {
             lines.push(Vec::new());
             current = id;
         }
-        let p = Vector3::new(r[x], r[y], z.map_or(0.0, |z| r[z]));
         lines.last_mut().expect("pushed above").push(p);
     }
     Ok(lines)

@@ -262,6 +262,19 @@ impl PrincipalCurvatures {
         k2: f64::NAN,
     };
 
+    /// The values from the Gaussian and mean curvature alone (as discrete estimates on
+    /// meshes give them): κ1,2 = H ± √(max(H² − K, 0)), the roots of κ² − 2Hκ + K = 0
+    /// (seed 000, eqs. 20–21), with a negative discriminant from rounding taken as 0.
+    pub fn from_gaussian_mean(gaussian: f64, mean: f64) -> Self {
+        let d = (mean * mean - gaussian).max(0.0).sqrt();
+        PrincipalCurvatures {
+            gaussian,
+            mean,
+            k1: mean + d,
+            k2: mean - d,
+        }
+    }
+
     /// The values at a point from the surface's jet there, and the unit normal (as
     /// [`Curvature::from_jet`] without the directions).
     #[inline]

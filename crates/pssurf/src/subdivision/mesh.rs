@@ -167,31 +167,12 @@ impl Mesh {
     /// Checks indices, positions, triangles, and builds the edges: manifold edges (at most
     /// two triangles, oriented alike) and manifold vertices (one fan each).
     pub fn topology(&self) -> Result<Topology, MeshError> {
+        self.check()?;
         let t = self.triangles.len();
-        if t == 0 {
-            return Err(MeshError::Empty);
-        }
-        if t > MAX_TRIANGLES {
-            return Err(MeshError::TooLarge(t));
-        }
-        let n = self.positions.len();
-        if let Some(v) = self.positions.iter().position(|p| {
-            !p.iter()
-                .all(|c| c.is_finite() && c.abs() <= crate::limits::MAX_COORDINATE)
-        }) {
-            return Err(MeshError::NotFinite(v));
-        }
-        for (k, tri) in self.triangles.iter().enumerate() {
-            if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {
-                return Err(MeshError::BadIndex {
-                    triangle: k,
-                    vertex: v,
-                    count: n,
-                });
-            }
-            if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
-                return Err(MeshError::Degenerate(k));
-            }
+        if let Some(k) = (self.triangles.iter())
+            .position(|tri| tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+        {
+            return Err(MeshError::Degenerate(k));
         }
         if let Some(k) = self
             .triangles
