@@ -276,6 +276,13 @@ impl PsBasis {
         self.locate_exhaustive(p)
     }
 
+    /// The barycentric coordinates of `p` in triangle `t` of Δ, as [`PsBasis::locate`]
+    /// computes them.
+    #[inline]
+    pub(crate) fn triangle_bary(&self, t: usize, p: Point2<f64>) -> Bary {
+        self.geom[t].bary(p)
+    }
+
     /// The walk left the domain or took too long: ask the triangulation's R-tree.
     #[cold]
     #[inline(never)]

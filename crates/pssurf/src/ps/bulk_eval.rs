@@ -7,6 +7,7 @@ use nalgebra::Point2;
 use rayon::prelude::*;
 
 use super::basis::SubLocation;
+use super::grid_scan::SCAN_POINTS_PER_TRIANGLE;
 use super::net::SUB_ORDINATES;
 use super::spline::{Evaluator, PsSpline};
 use crate::geometry::Bary;
@@ -72,14 +73,22 @@ impl<V: Vector> Run<V> {
 
 impl<V: Vector> PsSpline<V> {
     /// The values on the grid `xs` × `ys`, row-major: entry `i · ys.len() + j` is
-    /// s(xs[i], ys[j]), or `outside` where that point lies outside the domain. Each row (a
-    /// line x = xs[i]) is walked once; the points between two crossings of the refinement's
-    /// edges are evaluated from the same quadratic with no point location. Rows run in
-    /// parallel. Agrees with [`PsSpline::eval`] to rounding (the barycentric coordinates are
-    /// updated, not recomputed); decides inside and outside exactly as it does.
+    /// s(xs[i], ys[j]), or `outside` where that point lies outside the domain. Agrees with
+    /// [`PsSpline::eval`] to rounding. In parallel, by one of two methods:
+    /// - sorted axes with several grid points per triangle: a scan conversion of Δ*, which
+    ///   finds where each grid line crosses each triangle and its pieces (no point location);
+    ///   it decides inside and outside as `eval` does, up to points within rounding of the
+    ///   domain's boundary, and also to points beyond the domain's extreme vertices by less
+    ///   than the location tolerance, which it leaves outside;
+    /// - otherwise each row (a line x = xs[i]) is walked once; the points between two
+    ///   crossings of the refinement's edges are evaluated from the same quadratic, and
+    ///   inside and outside are decided exactly as `eval` does.
     ///
     /// The caller checks the size: `xs.len() · ys.len()` values are allocated.
     pub fn values_on_grid(&self, xs: &[f64], ys: &[f64], outside: V) -> Vec<V> {
+        if let Some(values) = self.scan_grid(xs, ys, outside, SCAN_POINTS_PER_TRIANGLE) {
+            return values;
+        }
         let ny = ys.len();
         let mut out = vec![outside; xs.len() * ny];
         if ny == 0 {

@@ -8,6 +8,7 @@ pub mod design;
 pub mod energy;
 pub mod fair;
 pub mod from_bezier;
+mod grid_scan;
 pub mod net;
 pub mod nurps;
 pub mod ps_triangles;

@@ -1,0 +1,89 @@
+//! Times `interpolate` (the scattered-data fit) on N random points, repeated R times, for
+//! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200`.
+
+use std::time::Instant;
+
+use nalgebra::Point2;
+use std::sync::Arc;
+
+use pssurf::prelude::*;
+use pssurf::scattered::{
+    GradientMethod, NEAR_DUPLICATE, data_basis, estimate_gradients_by, hermite_spline, interpolate,
+    merge_near_duplicates,
+};
+
+fn main() {
+    let mut args = std::env::args().skip(1).map(|s| s.parse::<usize>().ok());
+    let n = args.next().flatten().unwrap_or(10_000);
+    let repeats = args.next().flatten().unwrap_or(50);
+    // A deterministic pseudo-random point set (xorshift), scattered order.
+    let mut s = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let pts: Vec<Point2<f64>> = (0..n).map(|_| Point2::new(next(), next())).collect();
+    let z: Vec<f64> = pts
+        .iter()
+        .map(|p| (3.0 * p.x).sin() * (2.0 * p.y).cos())
+        .collect();
+    let mut best = f64::INFINITY;
+    for _ in 0..repeats {
+        let t = Instant::now();
+        let f = interpolate(&pts, &z, GradientMethod::Local).expect("the fit succeeds");
+        best = best.min(t.elapsed().as_secs_f64());
+        std::hint::black_box(f);
+    }
+    println!("{n} points: best of {repeats} fits {:.2} ms", best * 1e3);
+    phases(&pts, &z, repeats);
+}
+
+/// The best time of each phase of `interpolate`, run one after the other as it does.
+fn phases(pts: &[Point2<f64>], z: &[f64], repeats: usize) {
+    let mut best = [f64::INFINITY; 6];
+    let names = [
+        "checks",
+        "merge",
+        "order",
+        "delaunay",
+        "basis",
+        "gradients+hermite",
+    ];
+    for _ in 0..repeats {
+        let mut lap = Lap::new();
+        pssurf::triangulation::check_coordinates(pts).unwrap();
+        assert!(pssurf::triangulation::duplicate_points(pts).is_none());
+        lap.mark(&mut best[0]);
+        let data = merge_near_duplicates(pts, z, NEAR_DUPLICATE);
+        lap.mark(&mut best[1]);
+        let order = pssurf::triangulation::morton_order(&data.points);
+        let ordered: Vec<Point2<f64>> = order.iter().map(|&k| data.points[k as usize]).collect();
+        let zz: Vec<f64> = order.iter().map(|&k| data.values[k as usize]).collect();
+        lap.mark(&mut best[2]);
+        let tri = Triangulation::delaunay(ordered).unwrap();
+        lap.mark(&mut best[3]);
+        let basis = Arc::new(data_basis(tri, SplitRule::Incenter).unwrap());
+        lap.mark(&mut best[4]);
+        let (g, _) = estimate_gradients_by(&basis, &zz, GradientMethod::Local).unwrap();
+        std::hint::black_box(hermite_spline(basis, &zz, &g).unwrap());
+        lap.mark(&mut best[5]);
+    }
+    for (name, t) in names.iter().zip(best) {
+        println!("  {name:<18} {:7.2} ms", t * 1e3);
+    }
+}
+
+/// Laps of a stopwatch, each kept as the best seen.
+struct Lap(Instant);
+
+impl Lap {
+    fn new() -> Self {
+        Lap(Instant::now())
+    }
+    fn mark(&mut self, best: &mut f64) {
+        *best = best.min(self.0.elapsed().as_secs_f64());
+        self.0 = Instant::now();
+    }
+}
