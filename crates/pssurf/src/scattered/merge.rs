@@ -61,32 +61,44 @@ pub fn near_duplicate_groups(points: &[Point2<f64>], relative: f64) -> Vec<Vec<u
         .map(|(k, p)| (cell_of(p), k))
         .collect();
     keyed.sort_unstable();
-    let mut cells: std::collections::HashMap<(i64, i64), std::ops::Range<usize>> =
-        std::collections::HashMap::new();
+    // The occupied cells in (cx, cy) order with their members' ranges in `keyed`.
+    let mut cells: Vec<((i64, i64), std::ops::Range<usize>)> = Vec::new();
     let mut start = 0;
     for k in 1..=keyed.len() {
         if k == keyed.len() || keyed[k].0 != keyed[start].0 {
-            cells.insert(keyed[start].0, start..k);
+            cells.push((keyed[start].0, start..k));
             start = k;
         }
     }
     let mut sets = UnionFind::new(points.len());
     let mut any = false;
-    for (cell, range) in &cells {
+    // For the columns cx + 1 and cx + 2, the first cell at or after (cx + dx, cy − 2): it
+    // only moves forward as the cells are visited in order.
+    let mut ahead = [0usize; 3];
+    for (c, (cell, range)) in cells.iter().enumerate() {
         let members = &keyed[range.clone()];
         for w in members.windows(2) {
             sets.join(w[0].1, w[1].1);
             any = true;
         }
-        // Neighbouring cells up to two away, each pair of cells visited once.
-        for dx in 0..=2i64 {
-            for dy in -2..=2i64 {
-                if dx == 0 && dy <= 0 {
-                    continue;
+        // Neighbouring cells up to two away, each pair of cells visited once: (cx, cy + 1),
+        // (cx, cy + 2) follow this cell; columns cx + 1, cx + 2 from cy − 2 to cy + 2.
+        for dx in 0..=2usize {
+            let lo = if dx == 0 {
+                (cell.0, cell.1 + 1)
+            } else {
+                (cell.0 + dx as i64, cell.1 - 2)
+            };
+            let hi = (cell.0 + dx as i64, cell.1 + 2);
+            let mut first = if dx == 0 { c + 1 } else { ahead[dx] };
+            while first < cells.len() && cells[first].0 < lo {
+                first += 1;
+            }
+            ahead[dx] = first;
+            for (other_cell, other) in &cells[first..] {
+                if *other_cell > hi {
+                    break;
                 }
-                let Some(other) = cells.get(&(cell.0 + dx, cell.1 + dy)) else {
-                    continue;
-                };
                 if sets.root(members[0].1) == sets.root(keyed[other.start].1) {
                     continue;
                 }

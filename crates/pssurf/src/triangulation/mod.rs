@@ -250,18 +250,26 @@ impl Triangulation {
 
 /// The first pair (smaller index first) of points with identical coordinates, if any.
 pub fn duplicate_points(points: &[Point2<f64>]) -> Option<(usize, usize)> {
-    let mut order: Vec<usize> = (0..points.len()).collect();
-    order.sort_unstable_by(|&a, &b| {
-        points[a]
-            .x
-            .total_cmp(&points[b].x)
-            .then(points[a].y.total_cmp(&points[b].y))
-            .then(a.cmp(&b))
-    });
-    order
-        .windows(2)
-        .find(|w| points[w[0]] == points[w[1]])
-        .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
+    // Sorting the coordinates' order-preserving integer keys themselves (not indices into
+    // the points) keeps the sort in cache; −0 and +0 get the same key.
+    let key = |c: f64| {
+        let b = (c + 0.0).to_bits() as i64;
+        b ^ (((b >> 63) as u64) >> 1) as i64
+    };
+    let mut keys: Vec<(i64, i64, u32)> = points
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (key(p.x), key(p.y), k as u32))
+        .collect();
+    if keys.len() > PARALLEL_SORT {
+        keys.par_sort_unstable();
+    } else {
+        keys.sort_unstable();
+    }
+    keys.windows(2)
+        .map(|w| (w[0].2 as usize, w[1].2 as usize))
+        .find(|&(a, b)| points[a] == points[b])
+        .map(|(a, b)| (a.min(b), a.max(b)))
 }
 
 /// Above this many points [`morton_order`] sorts in parallel.
