@@ -68,25 +68,38 @@ fn eval(c: &mut Criterion) {
     g.finish();
 }
 
-/// The fast paths for many points (issue 19): grid runs, and scattered queries sorted along
-/// the Morton curve, on 1 core and on all cores:
+/// The fast paths for many points (issue 19): grids by scan conversion and by row runs, and
+/// scattered queries sorted along the Morton curve, on 1 core and on all cores:
 /// `cargo bench -p pssurf --bench eval -- fast`.
 fn fast_paths(c: &mut Criterion) {
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .expect("a thread pool");
-    let mut g = c.benchmark_group("fast_grid_10k_vertices_1000x1000");
+    // The scan conversion (sorted axes) against the row runs, which the same grid with
+    // descending axes takes (the same points, rows and columns reversed).
+    let mut g = c.benchmark_group("fast_grid_1000x1000");
     g.sample_size(20);
-    let s = common::franke_spline(10_000);
-    let axis: Vec<f64> = (0..1000).map(|k| k as f64 / 999.0).collect();
     g.throughput(Throughput::Elements(1_000_000));
-    g.bench_function("values_on_grid/all cores", |b| {
-        b.iter(|| black_box(s.values_on_grid(&axis, &axis, f64::NAN)))
-    });
-    g.bench_function("values_on_grid/1 core", |b| {
-        b.iter(|| one.install(|| black_box(s.values_on_grid(&axis, &axis, f64::NAN))))
-    });
+    let axis: Vec<f64> = (0..1000).map(|k| k as f64 / 999.0).collect();
+    let descending: Vec<f64> = axis.iter().rev().copied().collect();
+    for n in [1_000usize, 10_000, 100_000] {
+        let s = common::franke_spline(n);
+        g.bench_with_input(BenchmarkId::new("scan/all cores", n), &axis, |b, a| {
+            b.iter(|| black_box(s.values_on_grid(a, a, f64::NAN)))
+        });
+        g.bench_with_input(BenchmarkId::new("runs/all cores", n), &descending, |b, a| {
+            b.iter(|| black_box(s.values_on_grid(a, a, f64::NAN)))
+        });
+        if n == 10_000 {
+            g.bench_with_input(BenchmarkId::new("scan/1 core", n), &axis, |b, a| {
+                b.iter(|| one.install(|| black_box(s.values_on_grid(a, a, f64::NAN))))
+            });
+            g.bench_with_input(BenchmarkId::new("runs/1 core", n), &descending, |b, a| {
+                b.iter(|| one.install(|| black_box(s.values_on_grid(a, a, f64::NAN))))
+            });
+        }
+    }
     g.finish();
 
     let mut g = c.benchmark_group("fast_scattered_1M_queries");
