@@ -1,5 +1,5 @@
 //! Times `interpolate` (the scattered-data fit) on N random points, repeated R times, for
-//! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200`.
+//! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200 [--global]`.
 
 use std::time::Instant;
 
@@ -16,6 +16,11 @@ fn main() {
     let mut args = std::env::args().skip(1).map(|s| s.parse::<usize>().ok());
     let n = args.next().flatten().unwrap_or(10_000);
     let repeats = args.next().flatten().unwrap_or(50);
+    let method = if std::env::args().any(|a| a == "--global") {
+        GradientMethod::Global
+    } else {
+        GradientMethod::Local
+    };
     // A deterministic pseudo-random point set (xorshift), scattered order.
     let mut s = 0x9e37_79b9_7f4a_7c15_u64;
     let mut next = || {
@@ -32,16 +37,16 @@ fn main() {
     let mut best = f64::INFINITY;
     for _ in 0..repeats {
         let t = Instant::now();
-        let f = interpolate(&pts, &z, GradientMethod::Local).expect("the fit succeeds");
+        let f = interpolate(&pts, &z, method).expect("the fit succeeds");
         best = best.min(t.elapsed().as_secs_f64());
         std::hint::black_box(f);
     }
     println!("{n} points: best of {repeats} fits {:.2} ms", best * 1e3);
-    phases(&pts, &z, repeats);
+    phases(&pts, &z, repeats, method);
 }
 
 /// The best time of each phase of `interpolate`, run one after the other as it does.
-fn phases(pts: &[Point2<f64>], z: &[f64], repeats: usize) {
+fn phases(pts: &[Point2<f64>], z: &[f64], repeats: usize, method: GradientMethod) {
     let mut best = [f64::INFINITY; 6];
     let names = [
         "checks",
@@ -66,7 +71,7 @@ fn phases(pts: &[Point2<f64>], z: &[f64], repeats: usize) {
         lap.mark(&mut best[3]);
         let basis = Arc::new(data_basis(tri, SplitRule::Incenter).unwrap());
         lap.mark(&mut best[4]);
-        let (g, _) = estimate_gradients_by(&basis, &zz, GradientMethod::Local).unwrap();
+        let (g, _) = estimate_gradients_by(&basis, &zz, method).unwrap();
         std::hint::black_box(hermite_spline(basis, &zz, &g).unwrap());
         lap.mark(&mut best[5]);
     }
