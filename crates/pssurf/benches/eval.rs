@@ -88,9 +88,11 @@ fn fast_paths(c: &mut Criterion) {
         g.bench_with_input(BenchmarkId::new("scan/all cores", n), &axis, |b, a| {
             b.iter(|| black_box(s.values_on_grid(a, a, f64::NAN)))
         });
-        g.bench_with_input(BenchmarkId::new("runs/all cores", n), &descending, |b, a| {
-            b.iter(|| black_box(s.values_on_grid(a, a, f64::NAN)))
-        });
+        g.bench_with_input(
+            BenchmarkId::new("runs/all cores", n),
+            &descending,
+            |b, a| b.iter(|| black_box(s.values_on_grid(a, a, f64::NAN))),
+        );
         if n == 10_000 {
             g.bench_with_input(BenchmarkId::new("scan/1 core", n), &axis, |b, a| {
                 b.iter(|| one.install(|| black_box(s.values_on_grid(a, a, f64::NAN))))
