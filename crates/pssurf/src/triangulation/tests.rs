@@ -350,7 +350,7 @@ fn boundary_contacts_are_decided_exactly() {
     Triangulation::try_new(off, vec![[0, 1, 2], [3, 4, 5]]).unwrap();
 }
 
-/// The counting-sort Morton order sorts by the interleaved 16-bit grid codes (computed here
+/// The Morton order sorts by the interleaved 16-bit grid codes (computed here
 /// bit by bit), keeps ties in the given order, and never panics on NaN or infinite input.
 #[test]
 fn morton_order_sorts_by_interleaved_codes() {
@@ -396,4 +396,23 @@ fn morton_order_sorts_by_interleaved_codes() {
         Point2::new(0.0, 0.0),
     ];
     assert_eq!(morton_order(&odd).len(), 3);
+}
+
+/// The radix sort of Morton keys equals a stable sort by the upper half, also when digits
+/// are shared by all keys (passes skipped) and with many equal upper halves.
+#[test]
+fn radix_sort_by_the_upper_half_is_a_stable_sort() {
+    let mut r = crate::test_util::rng(78);
+    for (spread, n) in [(u32::MAX as f64, 10_000), (300.0, 20_000), (1.0, 5_000)] {
+        let mut keys: Vec<u64> = (0..n)
+            .map(|i| {
+                let high = 0x1234_0000u64 + uniform(&mut r, 0.0, spread) as u64;
+                ((high & 0xffff_ffff) << 32) | i as u64
+            })
+            .collect();
+        let mut want = keys.clone();
+        want.sort_by_key(|k| k >> 32);
+        super::sort_by_high_half(&mut keys);
+        assert_eq!(keys, want);
+    }
 }
