@@ -403,7 +403,13 @@ fn morton_order_sorts_by_interleaved_codes() {
 #[test]
 fn radix_sort_by_the_upper_half_is_a_stable_sort() {
     let mut r = crate::test_util::rng(78);
-    for (spread, n) in [(u32::MAX as f64, 10_000), (300.0, 20_000), (1.0, 5_000)] {
+    for (spread, n) in [
+        (u32::MAX as f64, 10_000),
+        (300.0, 20_000),
+        (1.0, 5_000),
+        (u32::MAX as f64, 600_000),
+        (3000.0, 700_001),
+    ] {
         let mut keys: Vec<u64> = (0..n)
             .map(|i| {
                 let high = 0x1234_0000u64 + uniform(&mut r, 0.0, spread) as u64;
