@@ -1,5 +1,5 @@
-//! Fixtures shared by the benchmarks and the integration tests (`tests/` include this file
-//! with `#[path]`).
+//! Fixtures shared by the benchmarks, the integration tests and the profiling examples
+//! (`tests/` and `examples/` include this file with `#[path]`).
 #![allow(dead_code)]
 
 use std::sync::Arc;
@@ -25,6 +25,18 @@ pub fn franke(p: Point2<f64>) -> Hermite<f64> {
         + e3 * (-2.0 * 9.0 * (9.0 * y - 3.0) / 4.0)
         + e4 * (-2.0 * 9.0 * (9.0 * y - 7.0));
     Hermite { value, dx, dy }
+}
+
+/// The values of Franke's function at `points`.
+pub fn franke_values(points: &[Point2<f64>]) -> Vec<f64> {
+    points.iter().map(|&p| franke(p).value).collect()
+}
+
+/// The program's first N positional arguments as counts, each `defaults[k]` when absent or
+/// not a number (for the profiling examples).
+pub fn count_args<const N: usize>(defaults: [usize; N]) -> [usize; N] {
+    let args: Vec<Option<usize>> = std::env::args().skip(1).map(|a| a.parse().ok()).collect();
+    std::array::from_fn(|k| args.get(k).copied().flatten().unwrap_or(defaults[k]))
 }
 
 /// `n` seeded random points in the unit square, with the corners (so the grid is inside).

@@ -4,19 +4,14 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use nalgebra::Point2;
 use pssurf::prelude::*;
+
+#[path = "../benches/common.rs"]
+mod common;
 
 fn main() {
     let n = 1_000_000;
-    let mut s: u64 = 0x9E3779B97F4A7C15;
-    let mut next = || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let pts: Vec<Point2<f64>> = (0..n).map(|_| Point2::new(next(), next())).collect();
+    let pts = common::random_points(n, 1);
     let tri = Triangulation::delaunay(pts).unwrap();
     tri.spatial_order();
     for _ in 0..3 {

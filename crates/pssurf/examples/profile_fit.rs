@@ -1,39 +1,28 @@
 //! Times `interpolate` (the scattered-data fit) on N random points, repeated R times, for
 //! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200 [--global]`.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use nalgebra::Point2;
-use std::sync::Arc;
-
 use pssurf::prelude::*;
 use pssurf::scattered::{
     GradientMethod, NEAR_DUPLICATE, data_basis, estimate_gradients_by, hermite_spline, interpolate,
     merge_near_duplicates,
 };
 
+#[path = "../benches/common.rs"]
+mod common;
+
 fn main() {
-    let mut args = std::env::args().skip(1).map(|s| s.parse::<usize>().ok());
-    let n = args.next().flatten().unwrap_or(10_000);
-    let repeats = args.next().flatten().unwrap_or(50);
+    let [n, repeats] = common::count_args([10_000, 50]);
     let method = if std::env::args().any(|a| a == "--global") {
         GradientMethod::Global
     } else {
         GradientMethod::Local
     };
-    // A deterministic pseudo-random point set (xorshift), scattered order.
-    let mut s = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let pts: Vec<Point2<f64>> = (0..n).map(|_| Point2::new(next(), next())).collect();
-    let z: Vec<f64> = pts
-        .iter()
-        .map(|p| (3.0 * p.x).sin() * (2.0 * p.y).cos())
-        .collect();
+    let pts = common::random_points(n, 1);
+    let z = common::franke_values(&pts);
     let mut best = f64::INFINITY;
     for _ in 0..repeats {
         let t = Instant::now();

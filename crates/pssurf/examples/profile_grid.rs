@@ -3,25 +3,15 @@
 
 use std::time::Instant;
 
-use nalgebra::Point2;
 use pssurf::scattered::{GradientMethod, interpolate};
 
+#[path = "../benches/common.rs"]
+mod common;
+
 fn main() {
-    let mut args = std::env::args().skip(1).map(|s| s.parse::<usize>().ok());
-    let n = args.next().flatten().unwrap_or(10_000);
-    let repeats = args.next().flatten().unwrap_or(50);
-    let mut s = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let pts: Vec<Point2<f64>> = (0..n).map(|_| Point2::new(next(), next())).collect();
-    let z: Vec<f64> = pts
-        .iter()
-        .map(|p| (3.0 * p.x).sin() * (2.0 * p.y).cos())
-        .collect();
+    let [n, repeats] = common::count_args([10_000, 50]);
+    let pts = common::random_points(n, 1);
+    let z = common::franke_values(&pts);
     let f = interpolate(&pts, &z, GradientMethod::Local).expect("the fit succeeds");
     let axis: Vec<f64> = (0..1000).map(|k| k as f64 / 999.0).collect();
     let mut best = f64::INFINITY;

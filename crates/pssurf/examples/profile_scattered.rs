@@ -3,31 +3,19 @@
 
 use std::time::Instant;
 
-use nalgebra::Point2;
 use pssurf::scattered::{GradientMethod, interpolate};
 use pssurf::triangulation::morton_order;
 
+#[path = "../benches/common.rs"]
+mod common;
+
 fn main() {
-    let mut args = std::env::args().skip(1).map(|s| s.parse::<usize>().ok());
-    let n = args.next().flatten().unwrap_or(10_000);
-    let repeats = args.next().flatten().unwrap_or(20);
-    let mut s = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut random =
-        |k: usize| -> Vec<Point2<f64>> { (0..k).map(|_| Point2::new(next(), next())).collect() };
-    let pts = random(n);
-    let z: Vec<f64> = pts
-        .iter()
-        .map(|p| (3.0 * p.x).sin() * (2.0 * p.y).cos())
-        .collect();
+    let [n, repeats] = common::count_args([10_000, 20]);
+    let pts = common::random_points(n, 1);
+    let z = common::franke_values(&pts);
     let f = interpolate(&pts, &z, GradientMethod::Local).expect("the fit succeeds");
     f.spline.basis().triangulation().prepare_locator();
-    let queries = random(1_000_000);
+    let queries = common::random_points(1_000_000, 2);
     let (mut all, mut order) = (f64::INFINITY, f64::INFINITY);
     for _ in 0..repeats {
         let t = Instant::now();

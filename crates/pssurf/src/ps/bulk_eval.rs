@@ -146,6 +146,7 @@ mod tests {
 
     use nalgebra::Point2;
 
+    use crate::ps::tests::{assert_grid_agrees, random_hermite_spline};
     use crate::ps::{Hermite, PsBasis, PsSpline};
     use crate::test_util::{rng, uniform};
     use crate::triangulation::Triangulation;
@@ -156,15 +157,7 @@ mod tests {
         let pts: Vec<Point2<f64>> = (0..n)
             .map(|_| Point2::new(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)))
             .collect();
-        let data: Vec<Hermite<f64>> = (0..n)
-            .map(|_| Hermite {
-                value: uniform(&mut r, -1.0, 1.0),
-                dx: uniform(&mut r, -1.0, 1.0),
-                dy: uniform(&mut r, -1.0, 1.0),
-            })
-            .collect();
-        let basis = PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap();
-        PsSpline::hermite(Arc::new(basis), &data).unwrap()
+        random_hermite_spline(Triangulation::delaunay(pts).unwrap(), seed)
     }
 
     /// The grid path agrees with point-by-point evaluation: the same points are outside
@@ -185,23 +178,7 @@ mod tests {
             xs[5] = f64::NAN;
             ys[9] = f64::NAN;
             let grid = s.values_on_grid(&xs, &ys, f64::INFINITY);
-            let mut ev = s.evaluator();
-            let (mut inside, mut outside) = (0, 0);
-            for (i, &x) in xs.iter().enumerate() {
-                for (j, &y) in ys.iter().enumerate() {
-                    let got = grid[i * ys.len() + j];
-                    match ev.value(Point2::new(x, y)) {
-                        Some(v) => {
-                            inside += 1;
-                            assert!((got - v).abs() <= 1e-13 * (1.0 + v.abs()), "{got} vs {v}");
-                        }
-                        None => {
-                            outside += 1;
-                            assert_eq!(got, f64::INFINITY, "({x}, {y}) is outside");
-                        }
-                    }
-                }
-            }
+            let (inside, outside) = assert_grid_agrees(&s, &xs, &ys, &grid, f64::INFINITY);
             assert!(
                 inside > 1500 && outside > 300,
                 "{inside} inside, {outside} outside"
@@ -210,8 +187,8 @@ mod tests {
     }
 
     /// A spline interpolating a quadratic (value and gradient) is that quadratic (the PS
-    /// space contains the quadratics): the grid and the scattered paths give its closed form
-    /// to 1e-13 relative at every point inside.
+    /// space contains the quadratics): the grid paths (runs and scan) and the scattered path
+    /// give its closed form to 1e-13 relative at every point inside.
     #[test]
     fn grid_and_scattered_values_reproduce_quadratics() {
         let q = |p: Point2<f64>| {
@@ -233,24 +210,30 @@ mod tests {
                 .collect();
             let basis = PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap();
             let s = PsSpline::hermite(Arc::new(basis), &data).unwrap();
+            // Unsorted rows take the runs; sorted ones the scan.
             let xs: Vec<f64> = (0..80).map(|_| uniform(&mut r, 0.0, 1.0)).collect();
+            let mut sorted = xs.clone();
+            sorted.sort_by(f64::total_cmp);
             let ys: Vec<f64> = (0..90).map(|k| k as f64 / 89.0).collect();
-            let grid = s.values_on_grid(&xs, &ys, f64::NAN);
-            let mut inside = 0;
-            for (i, &x) in xs.iter().enumerate() {
-                for (j, &y) in ys.iter().enumerate() {
-                    let v = grid[i * ys.len() + j];
-                    if !v.is_nan() {
-                        inside += 1;
-                        let want = q(Point2::new(x, y));
-                        assert!(
-                            (v - want).abs() <= 1e-13 * (1.0 + want.abs()),
-                            "{v} vs {want}"
-                        );
+            let runs = s.values_on_grid(&xs, &ys, f64::NAN);
+            let scan = s
+                .scan_grid(&sorted, &ys, f64::NAN, 0.0)
+                .expect("sorted axes");
+            for (xs, grid) in [(&xs, runs), (&sorted, scan)] {
+                let mut inside = 0;
+                for (i, &x) in xs.iter().enumerate() {
+                    for (j, &y) in ys.iter().enumerate() {
+                        let v = grid[i * ys.len() + j];
+                        if !v.is_nan() {
+                            inside += 1;
+                            let want = q(Point2::new(x, y));
+                            let close = (v - want).abs() <= 1e-13 * (1.0 + want.abs());
+                            assert!(close, "{v} vs {want}");
+                        }
                     }
                 }
+                assert!(inside > 5000, "{inside}");
             }
-            assert!(inside > 5000, "{inside}");
             let scattered: Vec<Point2<f64>> = (0..20_000)
                 .map(|_| Point2::new(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)))
                 .collect();

@@ -79,6 +79,46 @@ fn random_hermite(r: &mut ChaCha8Rng, n: usize) -> Vec<Hermite<f64>> {
         .collect()
 }
 
+/// The Hermite spline with random data (values and gradients in [−1, 1]) on the optimal
+/// basis of `tri`.
+pub(super) fn random_hermite_spline(tri: Triangulation, seed: u64) -> PsSpline<f64> {
+    let data = random_hermite(&mut rng(seed), tri.vertex_count());
+    let basis = PsBasis::optimal(tri).expect("a valid triangulation");
+    PsSpline::hermite(Arc::new(basis), &data).expect("valid Hermite data")
+}
+
+/// Asserts that `grid` (row-major, `xs` along rows) holds `s`'s values to 1e-13 where
+/// point-by-point evaluation finds the point, and `outside` (or NaN for NaN) elsewhere;
+/// returns how many points were inside and outside.
+pub(super) fn assert_grid_agrees(
+    s: &PsSpline<f64>,
+    xs: &[f64],
+    ys: &[f64],
+    grid: &[f64],
+    outside: f64,
+) -> (usize, usize) {
+    let mut ev = s.evaluator();
+    let (mut inside, mut out) = (0, 0);
+    for (i, &x) in xs.iter().enumerate() {
+        for (j, &y) in ys.iter().enumerate() {
+            let got = grid[i * ys.len() + j];
+            match ev.value(Point2::new(x, y)) {
+                Some(v) => {
+                    inside += 1;
+                    let close = (got - v).abs() <= 1e-13 * (1.0 + v.abs());
+                    assert!(close, "({x}, {y}): {got} vs {v}");
+                }
+                None => {
+                    out += 1;
+                    let same = got == outside || (got.is_nan() && outside.is_nan());
+                    assert!(same, "({x}, {y}) is outside, got {got}");
+                }
+            }
+        }
+    }
+    (inside, out)
+}
+
 pub(crate) fn bases(seed: u64) -> Vec<(&'static str, Arc<PsBasis>)> {
     catalogue(seed)
         .into_iter()
