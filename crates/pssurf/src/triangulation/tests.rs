@@ -422,3 +422,12 @@ fn radix_sort_by_the_upper_half_is_a_stable_sort() {
         assert_eq!(keys, want);
     }
 }
+
+/// Coordinates −0 and +0 are the same point: (−0, 1) and (0, 1) are duplicates even when
+/// another point with x = −0 sorts between them by bits.
+#[test]
+fn duplicates_across_signed_zeros() {
+    let pts = [p(-0.0, 1.0), p(-0.0, 2.0), p(0.0, 1.0), p(3.0, 4.0)];
+    assert_eq!(duplicate_points(&pts), Some((0, 2)));
+    assert_eq!(duplicate_points(&pts[1..]), None);
+}
