@@ -133,25 +133,36 @@ impl Block3Matrix {
     /// order, repeats allowed; those above i and i itself are handled).
     pub fn with_pattern(n: usize, coupled: impl Fn(usize, &mut Vec<u32>) + Sync) -> Self {
         use rayon::prelude::*;
-        let rows: Vec<Vec<u32>> = (0..n)
+        const CHUNK: usize = 1024;
+        // Per chunk of rows: their columns one after the other, and each row's count.
+        let chunks: Vec<(Vec<u32>, Vec<usize>)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
-            .with_min_len(1024)
-            .map_init(Vec::new, |work, i| {
-                work.clear();
-                coupled(i, work);
-                work.push(i as u32);
-                let mut row: Vec<u32> = work.iter().copied().filter(|&j| j as usize <= i).collect();
-                row.sort_unstable();
-                row.dedup();
-                row
+            .map(|k| {
+                let mut work = Vec::new();
+                let mut cols = Vec::new();
+                let mut lens = Vec::new();
+                for i in k * CHUNK..((k + 1) * CHUNK).min(n) {
+                    work.clear();
+                    coupled(i, &mut work);
+                    work.push(i as u32);
+                    work.retain(|&j| j as usize <= i);
+                    work.sort_unstable();
+                    work.dedup();
+                    cols.extend_from_slice(&work);
+                    lens.push(work.len());
+                }
+                (cols, lens)
             })
             .collect();
         let mut start = Vec::with_capacity(n + 1);
         start.push(0);
-        for r in &rows {
-            start.push(start.last().unwrap() + r.len());
+        for len in chunks.iter().flat_map(|(_, lens)| lens) {
+            start.push(start.last().unwrap() + len);
         }
-        let cols: Vec<u32> = rows.concat();
+        let mut cols = Vec::with_capacity(start[n]);
+        for (c, _) in &chunks {
+            cols.extend_from_slice(c);
+        }
         let blocks = vec![[[0.0; 3]; 3]; cols.len()];
         Block3Matrix {
             start,
@@ -169,23 +180,6 @@ impl Block3Matrix {
         }
     }
 
-    /// Adds `other`, which has the same pattern (made by [`zeroed`](Self::zeroed)).
-    pub fn accumulate(&mut self, other: &Self) {
-        assert_eq!(self.cols, other.cols, "the same pattern");
-        use rayon::prelude::*;
-        self.blocks
-            .par_iter_mut()
-            .zip(&other.blocks)
-            .with_min_len(4096)
-            .for_each(|(a, b)| {
-                for r in 0..3 {
-                    for c in 0..3 {
-                        a[r][c] += b[r][c];
-                    }
-                }
-            });
-    }
-
     /// The number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.start.len() - 1
@@ -197,29 +191,68 @@ impl Block3Matrix {
     }
 
     fn slot(&self, i: usize, j: usize) -> usize {
-        let row = &self.cols[self.start[i]..self.start[i + 1]];
-        let k = row
-            .binary_search(&(j as u32))
-            .unwrap_or_else(|_| panic!("vertices {i} and {j} are not coupled in the pattern"));
-        self.start[i] + k
+        slot_of(&self.start, &self.cols, i, j)
     }
 
     /// Adds the local matrix `m` of an element with these vertices (distinct, at most
     /// [`MAX_ELEMENT_VERTICES`], pairwise coupled in the pattern).
     pub fn add_element(&mut self, vertices: &[usize], m: &ElementMatrix) {
-        for (a, &i) in vertices.iter().enumerate() {
-            for (b, &j) in vertices.iter().enumerate() {
-                if j > i {
-                    continue;
-                }
-                let slot = self.slot(i, j);
-                let block = &mut self.blocks[slot];
-                for r in 0..3 {
-                    for c in 0..3 {
-                        block[r][c] += m[3 * a + r][3 * b + c];
-                    }
-                }
-            }
+        for_each_block(vertices, m, |i, j, block| {
+            let slot = self.slot(i, j);
+            add_block(&mut self.blocks[slot], &block);
+        });
+    }
+
+    /// Adds elements in parallel, without copies of the matrix: the rows are cut into
+    /// consecutive ranges of about `rows_per_range` vertices, and `elements(range, add)`
+    /// must pass to `add` the elements of that range of vertices (each element of the
+    /// matrix in exactly one range; for locality, those whose smallest vertex is in it).
+    /// Each range writes its own rows in place; the blocks an element has in other ranges'
+    /// rows are set aside and added afterwards. Element matrices are read like
+    /// [`add_element`](Self::add_element)'s.
+    pub fn add_elements_by_range<F>(&mut self, rows_per_range: usize, elements: F)
+    where
+        F: Fn(std::ops::Range<usize>, &mut dyn FnMut(&[usize], &ElementMatrix)) + Sync,
+    {
+        use rayon::prelude::*;
+        let n = self.vertex_count();
+        let per = rows_per_range.max(1);
+        let Block3Matrix {
+            start,
+            cols,
+            blocks,
+        } = self;
+        let (start, cols) = (&*start, &*cols);
+        // The blocks of each range's rows, as disjoint mutable slices.
+        let mut slices = Vec::with_capacity(n.div_ceil(per));
+        let mut rest: &mut [[[f64; 3]; 3]] = blocks;
+        for first in (0..n).step_by(per) {
+            let last = (first + per).min(n);
+            let (mine, tail) = rest.split_at_mut(start[last] - start[first]);
+            slices.push((first..last, mine));
+            rest = tail;
+        }
+        let foreign: Vec<Vec<(usize, [[f64; 3]; 3])>> = slices
+            .into_par_iter()
+            .map(|(range, mine)| {
+                let offset = start[range.start];
+                let mut set_aside = Vec::new();
+                let mut add = |vertices: &[usize], m: &ElementMatrix| {
+                    for_each_block(vertices, m, |i, j, block| {
+                        let slot = slot_of(start, cols, i, j);
+                        if range.contains(&i) {
+                            add_block(&mut mine[slot - offset], &block);
+                        } else {
+                            set_aside.push((slot, block));
+                        }
+                    });
+                };
+                elements(range.clone(), &mut add);
+                set_aside
+            })
+            .collect();
+        for (slot, block) in foreign.into_iter().flatten() {
+            add_block(&mut blocks[slot], &block);
         }
     }
 
@@ -278,6 +311,44 @@ impl Block3Matrix {
             }
         }
         (pos, val)
+    }
+}
+
+/// Where block (i, j), i ≥ j, is stored, given a [`Block3Matrix`]'s row starts and columns.
+fn slot_of(start: &[usize], cols: &[u32], i: usize, j: usize) -> usize {
+    let row = &cols[start[i]..start[i + 1]];
+    let k = row
+        .binary_search(&(j as u32))
+        .unwrap_or_else(|_| panic!("vertices {i} and {j} are not coupled in the pattern"));
+    start[i] + k
+}
+
+/// Calls `f(i, j, block)` for the blocks (i, j), i ≥ j, of an element matrix over these
+/// vertices.
+fn for_each_block(
+    vertices: &[usize],
+    m: &ElementMatrix,
+    mut f: impl FnMut(usize, usize, [[f64; 3]; 3]),
+) {
+    for (a, &i) in vertices.iter().enumerate() {
+        for (b, &j) in vertices.iter().enumerate() {
+            if j <= i {
+                f(
+                    i,
+                    j,
+                    std::array::from_fn(|r| std::array::from_fn(|c| m[3 * a + r][3 * b + c])),
+                );
+            }
+        }
+    }
+}
+
+/// `target += block`.
+fn add_block(target: &mut [[f64; 3]; 3], block: &[[f64; 3]; 3]) {
+    for r in 0..3 {
+        for c in 0..3 {
+            target[r][c] += block[r][c];
+        }
     }
 }
 
@@ -390,5 +461,59 @@ mod tests {
             }
         }
         assert!((rebuilt - dense).abs().max() < 1e-13);
+    }
+
+    #[test]
+    fn elements_added_by_range_equal_those_added_one_by_one() {
+        let mut r = rng(142);
+        let n = 40;
+        let elements: Vec<(Vec<usize>, ElementMatrix)> = (0..150)
+            .map(|_| {
+                let mut v: Vec<usize> = (0..4)
+                    .map(|_| (uniform(&mut r, 0.0, n as f64) as usize).min(n - 1))
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                let k = 3 * v.len();
+                let mut m: ElementMatrix = [[0.0; 12]; 12];
+                for a in 0..k {
+                    for b in 0..=a {
+                        let x = uniform(&mut r, -1.0, 1.0);
+                        m[a][b] = x;
+                        m[b][a] = x;
+                    }
+                }
+                (v, m)
+            })
+            .collect();
+        let pattern = Block3Matrix::with_pattern(n, |i, out| {
+            for (e, _) in &elements {
+                if e.contains(&i) {
+                    out.extend(e.iter().map(|&v| v as u32));
+                }
+            }
+        });
+        let mut one_by_one = pattern.zeroed();
+        for (v, m) in &elements {
+            one_by_one.add_element(v, m);
+        }
+        // Ranges of 1, 3 and 7 rows: most elements have blocks in other ranges' rows.
+        for per in [1, 3, 7, n] {
+            let mut by_range = pattern.zeroed();
+            by_range.add_elements_by_range(per, |range, add| {
+                for (v, m) in &elements {
+                    if range.contains(&v[0]) {
+                        add(v, m);
+                    }
+                }
+            });
+            for ((i, j, a), (_, _, b)) in one_by_one.blocks().zip(by_range.blocks()) {
+                for r in 0..3 {
+                    for c in 0..3 {
+                        assert!((a[r][c] - b[r][c]).abs() < 1e-13, "{per}: ({i}, {j})");
+                    }
+                }
+            }
+        }
     }
 }

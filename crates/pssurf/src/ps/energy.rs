@@ -16,8 +16,12 @@
 //!
 //! Both are sums of squares of linear functions of the control values: the matrices are
 //! symmetric positive semi-definite, and exact up to rounding (no quadrature).
-
-use rayon::prelude::*;
+//!
+//! A PS-spline is C¹, so across an edge with unit normal n its gradient is continuous and
+//! so is every second derivative along the edge: the Hessian jumps by α n nᵀ, whose
+//! Frobenius norm² (weights 1, 2, 1 of xx, xy, yy) is α² with α = nᵀ[∇²s]n. Each jump is
+//! therefore one square, that of the jump of the second derivative across the edge,
+//! computed from the two pieces' second derivatives in the direction n.
 
 use super::PsBasis;
 use super::net::{NET_LEN, SUB_ORDINATES};
@@ -100,36 +104,24 @@ impl PsBasis {
                 }
             }
         });
-        // One range of vertices per thread, each adding the elements of the triangles whose
-        // smallest vertex it is into its own copy of the matrix (elements go straight from
-        // the stack into it); then the copies are summed. Visiting triangles by vertex keeps
-        // consecutive ones near each other in memory (triangles come in no useful order).
-        let nv = tri.vertex_count();
-        let threads = rayon::current_num_threads().clamp(1, nv.div_ceil(1024).max(1));
-        let per = nv.div_ceil(threads);
-        let parts: Vec<Block3Matrix> = (0..threads)
-            .into_par_iter()
-            .map(|k| {
-                let mut part = q.zeroed();
-                let mut add = |e: &Element| part.add_element(&e.vertices[..e.len], &e.matrix);
-                let owned = |i: usize| {
-                    tri.molecule(i)
-                        .iter()
-                        .map(|&t| t as usize)
-                        .filter(move |&t| tri.triangle(t).into_iter().min() == Some(i))
-                };
-                for t in (k * per..((k + 1) * per).min(nv)).flat_map(owned) {
+        // Ranges of vertices in parallel, each adding the elements of the triangles whose
+        // smallest vertex is in it: consecutive triangles are near each other in memory
+        // (triangles come in no useful order, vertices in a spatial one), and most of their
+        // blocks are in the range's own rows.
+        q.add_elements_by_range(2048, |range, add| {
+            let mut add = |e: &Element| add(&e.vertices[..e.len], &e.matrix);
+            for i in range {
+                for t in tri.molecule(i).iter().map(|&t| t as usize) {
+                    if tri.triangle(t).into_iter().min() != Some(i) {
+                        continue;
+                    }
                     match energy {
                         Energy::ThinPlate => add(&self.thin_plate_element(t)),
                         Energy::HessianJumps => self.jump_elements(t, &mut add),
                     }
                 }
-                part
-            })
-            .collect();
-        for part in &parts {
-            q.accumulate(part);
-        }
+            }
+        });
         q
     }
 
@@ -149,9 +141,8 @@ impl PsBasis {
             match energy {
                 Energy::ThinPlate => give(&self.thin_plate_element(t)),
                 Energy::HessianJumps => {
-                    let h = self.piece_hessians(t);
-                    let pieces = self.refinement().sub_triangles(tri, t);
-                    give(&self.inner_jump_element(t, &h, &pieces));
+                    let side = PsSide::new(self, t);
+                    give(&self.inner_jump_element(&side));
                     for c in 0..3 {
                         let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
                             continue;
@@ -161,7 +152,7 @@ impl PsBasis {
                         if n < t && ts.binary_search(&n).is_ok() {
                             continue;
                         }
-                        give(&self.cross_edge_element(t, c, n, &h, &pieces));
+                        give(&self.cross_edge_element(&side, c, n));
                     }
                 }
             }
@@ -176,7 +167,7 @@ impl PsBasis {
                 e.add_square(piece.area * FROBENIUS[r], &row[..]);
             }
         }
-        e
+        e.mirrored()
     }
 
     /// Passes to `add` the Hessian jumps of triangle t: across its six inner edges (one
@@ -184,9 +175,8 @@ impl PsBasis {
     /// element each, over the four vertices of the two triangles).
     fn jump_elements(&self, t: usize, add: &mut impl FnMut(&Element)) {
         let tri = self.triangulation();
-        let h = self.piece_hessians(t);
-        let pieces = self.refinement().sub_triangles(tri, t);
-        add(&self.inner_jump_element(t, &h, &pieces));
+        let side = PsSide::new(self, t);
+        add(&self.inner_jump_element(&side));
         for c in 0..3 {
             let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
                 continue;
@@ -194,46 +184,34 @@ impl PsBasis {
             if n < t {
                 continue;
             }
-            add(&self.cross_edge_element(t, c, n, &h, &pieces));
+            add(&self.cross_edge_element(&side, c, n));
         }
     }
 
-    /// The Hessian jumps across the six inner edges of triangle t (one element).
-    fn inner_jump_element(
-        &self,
-        t: usize,
-        h: &[PieceHessian; 6],
-        pieces: &[crate::geometry::Triangle2; 6],
-    ) -> Element {
-        let v = self.triangulation().triangle(t);
-        let mut inner = Element::new(&v);
+    /// The Hessian jumps across the six inner edges of a triangle (one element).
+    fn inner_jump_element(&self, side: &PsSide) -> Element {
+        let mut inner = Element::new(&side.vertices);
         for k in 0..6 {
             // Piece k and piece k + 1 share the edge from Z to their common corner
             // (R_c for k = 2c, V_{c+1} for k = 2c + 1).
             let next = (k + 1) % 6;
-            let edge = pieces[k].v[1] - pieces[k].v[2];
-            let w = jump_weight(edge.norm_squared(), h[k].area + h[next].area);
-            for r in 0..3 {
-                let jump: [f64; 9] = std::array::from_fn(|m| h[k].rows[r][m] - h[next].rows[r][m]);
-                inner.add_square(w * FROBENIUS[r], &jump);
-            }
+            let edge = side.pieces[k].v[1] - side.pieces[k].v[2];
+            let w = jump_weight(edge.norm_squared(), side.areas[k] + side.areas[next]);
+            let normal = unit_normal(edge);
+            let a = side.second_derivative(k, normal);
+            let b = side.second_derivative(next, normal);
+            let jump: [f64; 9] = std::array::from_fn(|m| a[m] - b[m]);
+            inner.add_square(w, &jump);
         }
-        inner
+        inner.mirrored()
     }
 
-    /// The jumps across PS edge c of triangle t (V_c → V_{c+1}) into its neighbour n: the
+    /// The jumps across PS edge c of a triangle (V_c → V_{c+1}) into its neighbour n: the
     /// segments V_c R_c (piece 2c of t) and R_c V_{c+1} (piece 2c + 1).
-    fn cross_edge_element(
-        &self,
-        t: usize,
-        c: usize,
-        n: usize,
-        h: &[PieceHessian; 6],
-        pieces: &[crate::geometry::Triangle2; 6],
-    ) -> Element {
-        let tri = self.triangulation();
-        let v = tri.triangle(t);
-        let vn = tri.triangle(n);
+    fn cross_edge_element(&self, side: &PsSide, c: usize, n: usize) -> Element {
+        let v = side.vertices;
+        let other = PsSide::new(self, n);
+        let vn = other.vertices;
         // In n the shared edge runs V_{c+1} → V_c: it is n's PS edge c' with V'_{c'} = V_{c+1}.
         let cn = (0..3)
             .find(|&k| vn[k] == v[(c + 1) % 3] && vn[(k + 1) % 3] == v[c])
@@ -241,30 +219,75 @@ impl PsBasis {
         let opposite = vn[(cn + 2) % 3];
         let vertices = [v[0], v[1], v[2], opposite];
         // Columns of n's corners in the element: its corners are V_{c+1}, V_c and `opposite`.
-        let col_of_n = |k: usize| -> usize {
-            let vertex = vn[k];
-            vertices.iter().position(|&x| x == vertex).unwrap()
-        };
-        let hn = self.piece_hessians(n);
+        let col_of_n: [usize; 3] =
+            std::array::from_fn(|k| vertices.iter().position(|&x| x == vn[k]).unwrap());
         let mut e = Element::new(&vertices);
         // Piece 2c of t (V_c, R, Z) meets piece 2c' + 1 of n (R, V_c, Z'); piece 2c + 1 of t
         // meets piece 2c' of n.
         for (mine, theirs) in [(2 * c, 2 * cn + 1), (2 * c + 1, 2 * cn)] {
-            let edge = pieces[mine].v[1] - pieces[mine].v[0];
-            let w = jump_weight(edge.norm_squared(), h[mine].area + hn[theirs].area);
-            for r in 0..3 {
-                let mut jump = [0.0; 12];
-                for k in 0..3 {
-                    for j in 0..3 {
-                        jump[3 * k + j] += h[mine].rows[r][3 * k + j];
-                        jump[3 * col_of_n(k) + j] -= hn[theirs].rows[r][3 * k + j];
-                    }
+            let edge = side.pieces[mine].v[1] - side.pieces[mine].v[0];
+            let w = jump_weight(edge.norm_squared(), side.areas[mine] + other.areas[theirs]);
+            let normal = unit_normal(edge);
+            let a = side.second_derivative(mine, normal);
+            let b = other.second_derivative(theirs, normal);
+            let mut jump = [0.0; 12];
+            jump[..9].copy_from_slice(&a);
+            for k in 0..3 {
+                for j in 0..3 {
+                    jump[3 * col_of_n[k] + j] -= b[3 * k + j];
                 }
-                e.add_square(w * FROBENIUS[r], &jump);
             }
+            e.add_square(w, &jump);
         }
-        e
+        e.mirrored()
     }
+}
+
+/// What the Hessian jumps need of one triangle: its vertices, its stencil, its six pieces
+/// with their areas and barycentric gradients.
+struct PsSide {
+    vertices: [usize; 3],
+    stencil: super::net::NetStencil,
+    pieces: [crate::geometry::Triangle2; 6],
+    areas: [f64; 6],
+    gradients: [[nalgebra::Vector2<f64>; 3]; 6],
+}
+
+impl PsSide {
+    fn new(basis: &PsBasis, t: usize) -> Self {
+        let pieces = basis.refinement().sub_triangles(basis.triangulation(), t);
+        PsSide {
+            vertices: basis.triangulation().triangle(t),
+            stencil: basis.stencil(t),
+            areas: std::array::from_fn(|k| pieces[k].area()),
+            gradients: std::array::from_fn(|k| {
+                pieces[k]
+                    .bary_map()
+                    .expect("pieces of a valid PS refinement are not degenerate")
+                    .g
+            }),
+            pieces,
+        }
+    }
+
+    /// nᵀ ∇²s n on piece k, as a linear function of the triangle's nine control values
+    /// (index 3c + j): with p_i = ∇τ_i · n, s_nn = 2 Σ_i b_ii p_i² + 4 Σ_{i<j} b_ij p_i p_j.
+    fn second_derivative(&self, k: usize, n: nalgebra::Vector2<f64>) -> [f64; 9] {
+        const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
+        let p: [f64; 3] = std::array::from_fn(|i| self.gradients[k][i].dot(&n));
+        let mut weights = [0.0; NET_LEN];
+        for (slot, &(i, j)) in PAIRS.iter().enumerate() {
+            let factor = if i == j { 2.0 } else { 4.0 };
+            weights[SUB_ORDINATES[k][slot]] = factor * p[i] * p[j];
+        }
+        let coeffs = self.stencil.transpose(weights);
+        std::array::from_fn(|m| coeffs[m / 3][m % 3])
+    }
+}
+
+/// The unit normal of an edge with direction `d` (nonzero).
+fn unit_normal(d: nalgebra::Vector2<f64>) -> nalgebra::Vector2<f64> {
+    nalgebra::Vector2::new(-d.y, d.x) / d.norm()
 }
 
 /// The weight of a Hessian jump across an edge of length² `len2` between two pieces of
@@ -292,16 +315,29 @@ impl Element {
         }
     }
 
-    /// Adds w aaᵀ for the row vector `a` over the element's values.
+    /// Adds w aaᵀ for the row vector `a` over the element's values, to the lower triangle
+    /// only ([`mirrored`](Self::mirrored) completes the matrix).
     fn add_square(&mut self, w: f64, a: &[f64]) {
         for (r, &ar) in a.iter().enumerate() {
             if ar == 0.0 {
                 continue;
             }
-            for (c, &ac) in a.iter().enumerate() {
-                self.matrix[r][c] += w * ar * ac;
+            let war = w * ar;
+            for (c, &ac) in a[..=r].iter().enumerate() {
+                self.matrix[r][c] += war * ac;
             }
         }
+    }
+
+    /// The element with its upper triangle copied from the lower one.
+    fn mirrored(mut self) -> Self {
+        let n = 3 * self.len;
+        for r in 0..n {
+            for c in r + 1..n {
+                self.matrix[r][c] = self.matrix[c][r];
+            }
+        }
+        self
     }
 }
 
