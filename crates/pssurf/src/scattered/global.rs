@@ -100,7 +100,9 @@ pub(super) fn anchored_global_gradients(
             diagonal[i] = (k - 3, k - 1, 0.5 * (h[1][1] + h[2][2]));
         }
     }
-    let pattern = SpdPattern::new(2 * n, &positions)?;
+    // Minimum degree on the vertex graph: the same order as on the scalar system, found on
+    // a graph four times smaller.
+    let pattern = SpdPattern::with_order(2 * n, &positions, Some(&q.elimination_order(2)?))?;
     for eta in std::iter::once(ANCHOR).chain(STRONGER_ANCHORS) {
         let (mut a, mut b) = (entries.clone(), rhs.clone());
         for (i, &(xx, yy, stiffness)) in diagonal.iter().enumerate() {

@@ -529,7 +529,11 @@ impl NormalSystem {
         let (positions, data) = btb.lower_entries();
         let (_, energy) = q.lower_entries();
         Ok(NormalSystem {
-            pattern: SpdPattern::new(3 * q.vertex_count(), &positions)?,
+            pattern: SpdPattern::with_order(
+                3 * q.vertex_count(),
+                &positions,
+                Some(&q.elimination_order(3)?),
+            )?,
             diagonal: positions.iter().map(|(r, c)| r == c).collect(),
             data,
             energy,
