@@ -336,9 +336,10 @@ impl Block3Matrix {
 
     /// A fill-reducing elimination order of a system with `per_vertex` unknowns per vertex
     /// (numbered `per_vertex × i + k`) coupled like this matrix's vertices: the approximate
-    /// minimum degree order of the vertex graph, each vertex's unknowns together. The
-    /// same order as minimum degree on the scalar system (whose unknowns of a vertex are
-    /// indistinguishable), found on a graph `per_vertex²` times smaller.
+    /// minimum degree order of the vertex graph, each vertex's unknowns together. Of
+    /// essentially the same quality as minimum degree on the scalar system (a vertex's
+    /// unknowns are indistinguishable there), found on a graph with `per_vertex` times fewer
+    /// nodes and `per_vertex²` times fewer edges.
     pub fn elimination_order(&self, per_vertex: usize) -> Result<Vec<usize>, SparseError> {
         let n = self.vertex_count();
         // Row i's columns j ≤ i, sorted: column i of the upper triangle in CSC.
@@ -683,5 +684,20 @@ mod tests {
         let bs = nalgebra::DVector::from_column_slice(&b);
         let residual = (&dense * nalgebra::DVector::from_column_slice(&x) - &bs).norm();
         assert!(residual < 1e-12 * bs.norm(), "residual {residual}");
+        // The order reduces fill about as well as scalar minimum degree, and below no
+        // reordering.
+        let with_order = SpdPattern::with_order(3 * n, &pos, Some(&order)).unwrap();
+        let scalar = SpdPattern::new(3 * n, &pos).unwrap();
+        let identity: Vec<usize> = (0..3 * n).collect();
+        let none = SpdPattern::with_order(3 * n, &pos, Some(&identity)).unwrap();
+        let (a, b, c) = (
+            with_order.factor_entries(),
+            scalar.factor_entries(),
+            none.factor_entries(),
+        );
+        assert!(
+            a as f64 <= 1.2 * b as f64 && a < c,
+            "{a} vs {b} (scalar), {c} (none)"
+        );
     }
 }

@@ -100,8 +100,8 @@ pub(super) fn anchored_global_gradients(
             diagonal[i] = (k - 3, k - 1, 0.5 * (h[1][1] + h[2][2]));
         }
     }
-    // Minimum degree on the vertex graph: the same order as on the scalar system, found on
-    // a graph four times smaller.
+    // Minimum degree on the vertex graph: an order as good as on the scalar system, found on
+    // a graph with half the nodes and a quarter of the edges.
     let pattern = SpdPattern::with_order(2 * n, &positions, Some(&q.elimination_order(2)?))?;
     for eta in std::iter::once(ANCHOR).chain(STRONGER_ANCHORS) {
         let (mut a, mut b) = (entries.clone(), rhs.clone());
