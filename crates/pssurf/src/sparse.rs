@@ -464,6 +464,34 @@ mod tests {
     use super::*;
     use crate::test_util::*;
 
+    /// `count` elements over random sets of up to four of `n` vertices, each with a random
+    /// symmetric matrix (entries uniform in [−1, 1]).
+    fn random_symmetric_elements(
+        r: &mut rand_chacha::ChaCha8Rng,
+        n: usize,
+        count: usize,
+    ) -> Vec<(Vec<usize>, ElementMatrix)> {
+        (0..count)
+            .map(|_| {
+                let mut v: Vec<usize> = (0..4)
+                    .map(|_| (uniform(r, 0.0, n as f64) as usize).min(n - 1))
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                let k = 3 * v.len();
+                let mut m: ElementMatrix = [[0.0; 12]; 12];
+                for a in 0..k {
+                    for b in 0..=a {
+                        let x = uniform(r, -1.0, 1.0);
+                        m[a][b] = x;
+                        m[b][a] = x;
+                    }
+                }
+                (v, m)
+            })
+            .collect()
+    }
+
     #[test]
     fn solves_a_random_spd_system_to_rounding() {
         let mut r = rng(90);
@@ -512,36 +540,18 @@ mod tests {
     fn block_matrices_multiply_and_flatten_like_their_dense_form() {
         let mut r = rng(141);
         let n = 12;
-        // Elements over random vertex sets, each a random symmetric matrix.
-        let elements: Vec<Vec<usize>> = (0..30)
-            .map(|_| {
-                let mut v: Vec<usize> = (0..4)
-                    .map(|_| (uniform(&mut r, 0.0, n as f64) as usize).min(n - 1))
-                    .collect();
-                v.sort_unstable();
-                v.dedup();
-                v
-            })
-            .collect();
+        let elements = random_symmetric_elements(&mut r, n, 30);
         let mut m = Block3Matrix::with_pattern(n, |i, out| {
-            for e in &elements {
+            for (e, _) in &elements {
                 if e.contains(&i) {
                     out.extend(e.iter().map(|&v| v as u32));
                 }
             }
         });
         let mut dense = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
-        for e in &elements {
+        for (e, local) in &elements {
+            m.add_element(e, local);
             let k = 3 * e.len();
-            let mut local: ElementMatrix = [[0.0; 12]; 12];
-            for a in 0..k {
-                for b in 0..=a {
-                    let x = uniform(&mut r, -1.0, 1.0);
-                    local[a][b] = x;
-                    local[b][a] = x;
-                }
-            }
-            m.add_element(e, &local);
             for a in 0..k {
                 for b in 0..k {
                     dense[(3 * e[a / 3] + a % 3, 3 * e[b / 3] + b % 3)] += local[a][b];
@@ -574,25 +584,7 @@ mod tests {
     fn elements_added_by_range_equal_those_added_one_by_one() {
         let mut r = rng(142);
         let n = 40;
-        let elements: Vec<(Vec<usize>, ElementMatrix)> = (0..150)
-            .map(|_| {
-                let mut v: Vec<usize> = (0..4)
-                    .map(|_| (uniform(&mut r, 0.0, n as f64) as usize).min(n - 1))
-                    .collect();
-                v.sort_unstable();
-                v.dedup();
-                let k = 3 * v.len();
-                let mut m: ElementMatrix = [[0.0; 12]; 12];
-                for a in 0..k {
-                    for b in 0..=a {
-                        let x = uniform(&mut r, -1.0, 1.0);
-                        m[a][b] = x;
-                        m[b][a] = x;
-                    }
-                }
-                (v, m)
-            })
-            .collect();
+        let elements = random_symmetric_elements(&mut r, n, 150);
         let pattern = Block3Matrix::with_pattern(n, |i, out| {
             for (e, _) in &elements {
                 if e.contains(&i) {
@@ -626,44 +618,16 @@ mod tests {
 
     #[test]
     fn block_systems_solve_alike_in_their_vertex_elimination_order() {
-        let mut r = rng(143);
         let n = 50;
-        let elements: Vec<Vec<usize>> = (0..120)
-            .map(|_| {
-                let mut v: Vec<usize> = (0..3)
-                    .map(|_| (uniform(&mut r, 0.0, n as f64) as usize).min(n - 1))
-                    .collect();
-                v.sort_unstable();
-                v.dedup();
-                v
-            })
-            .collect();
-        let mut m = Block3Matrix::with_pattern(n, |i, out| {
-            for e in &elements {
-                if e.contains(&i) {
-                    out.extend(e.iter().map(|&v| v as u32));
-                }
-            }
-        });
-        // Σ over elements of vvᵀ, plus the identity: SPD.
-        let mut dense = nalgebra::DMatrix::<f64>::identity(3 * n, 3 * n);
+        let (mut m, mut dense) = symmetric_blocks::tests::random_blocks(n, 143);
+        // Plus the identity: positive definite.
         for i in 0..n {
             for j in 0..3 {
                 m.add_diagonal(i, j, 1.0);
+                dense[(3 * i + j, 3 * i + j)] += 1.0;
             }
         }
-        for e in &elements {
-            let k = 3 * e.len();
-            let v: Vec<f64> = (0..k).map(|_| uniform(&mut r, -1.0, 1.0)).collect();
-            let mut local: ElementMatrix = [[0.0; 12]; 12];
-            for a in 0..k {
-                for b in 0..k {
-                    local[a][b] = v[a] * v[b];
-                    dense[(3 * e[a / 3] + a % 3, 3 * e[b / 3] + b % 3)] += v[a] * v[b];
-                }
-            }
-            m.add_element(e, &local);
-        }
+        let mut r = rng(144);
         let order = m.elimination_order(3).unwrap();
         // A permutation keeping each vertex's three unknowns together.
         let mut seen = vec![false; 3 * n];
