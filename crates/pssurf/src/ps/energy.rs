@@ -91,6 +91,20 @@ impl PsBasis {
     /// The matrix Q of `energy` over the control values: E(s) = cᵀ Q c, with c the
     /// control values in vertex order (three per vertex).
     pub fn energy_matrix(&self, energy: Energy) -> Block3Matrix {
+        self.energy_matrix_with(energy, ThinPieces::Kept)
+    }
+
+    /// The Hessian-jump energy for estimating gradients of an interpolant, whose values are
+    /// fixed: jumps at needle-shaped and sliver pieces fade out ([`ThinPieces::Faded`]).
+    /// There the fixed values force second derivatives of the order of the data's deviation
+    /// from a quadratic divided by the piece's thickness², and minimising their squares
+    /// bends the gradients of every nearby vertex (errors of 1e6 on jittered grids whose
+    /// boundary rows are nearly collinear, where Delaunay leaves slivers along the hull).
+    pub fn interpolation_energy_matrix(&self) -> Block3Matrix {
+        self.energy_matrix_with(Energy::HessianJumps, ThinPieces::Faded)
+    }
+
+    fn energy_matrix_with(&self, energy: Energy, thin: ThinPieces) -> Block3Matrix {
         let tri = self.triangulation();
         let mut q = Block3Matrix::with_pattern(tri.vertex_count(), |i, out| {
             for &t in tri.molecule(i) {
@@ -117,7 +131,7 @@ impl PsBasis {
                     }
                     match energy {
                         Energy::ThinPlate => add(&self.thin_plate_element(t)),
-                        Energy::HessianJumps => self.jump_elements(t, &mut add),
+                        Energy::HessianJumps => self.jump_elements(t, thin, &mut add),
                     }
                 }
             }
@@ -141,7 +155,7 @@ impl PsBasis {
             match energy {
                 Energy::ThinPlate => give(&self.thin_plate_element(t)),
                 Energy::HessianJumps => {
-                    let side = PsSide::new(self, t);
+                    let side = PsSide::new(self, t, ThinPieces::Kept);
                     give(&self.inner_jump_element(&side));
                     for c in 0..3 {
                         let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
@@ -173,9 +187,9 @@ impl PsBasis {
     /// Passes to `add` the Hessian jumps of triangle t: across its six inner edges (one
     /// element), and across each edge of Δ it shares with a triangle of larger index (one
     /// element each, over the four vertices of the two triangles).
-    fn jump_elements(&self, t: usize, add: &mut impl FnMut(&Element)) {
+    fn jump_elements(&self, t: usize, thin: ThinPieces, add: &mut impl FnMut(&Element)) {
         let tri = self.triangulation();
-        let side = PsSide::new(self, t);
+        let side = PsSide::new(self, t, thin);
         add(&self.inner_jump_element(&side));
         for c in 0..3 {
             let Some(n) = tri.neighbor(t, super::refinement::edge_to_local(c)) else {
@@ -196,7 +210,8 @@ impl PsBasis {
             // (R_c for k = 2c, V_{c+1} for k = 2c + 1).
             let next = (k + 1) % 6;
             let edge = side.pieces[k].v[1] - side.pieces[k].v[2];
-            let w = jump_weight(edge.norm_squared(), side.areas[k] + side.areas[next]);
+            let w = side.shape[k].min(side.shape[next])
+                * jump_weight(edge.norm_squared(), side.areas[k] + side.areas[next]);
             let normal = unit_normal(edge);
             let a = side.second_derivative(k, normal);
             let b = side.second_derivative(next, normal);
@@ -210,7 +225,7 @@ impl PsBasis {
     /// segments V_c R_c (piece 2c of t) and R_c V_{c+1} (piece 2c + 1).
     fn cross_edge_element(&self, side: &PsSide, c: usize, n: usize) -> Element {
         let v = side.vertices;
-        let other = PsSide::new(self, n);
+        let other = PsSide::new(self, n, side.thin);
         let vn = other.vertices;
         // In n the shared edge runs V_{c+1} → V_c: it is n's PS edge c' with V'_{c'} = V_{c+1}.
         let cn = (0..3)
@@ -226,7 +241,8 @@ impl PsBasis {
         // meets piece 2c' of n.
         for (mine, theirs) in [(2 * c, 2 * cn + 1), (2 * c + 1, 2 * cn)] {
             let edge = side.pieces[mine].v[1] - side.pieces[mine].v[0];
-            let w = jump_weight(edge.norm_squared(), side.areas[mine] + other.areas[theirs]);
+            let w = side.shape[mine].min(other.shape[theirs])
+                * jump_weight(edge.norm_squared(), side.areas[mine] + other.areas[theirs]);
             let normal = unit_normal(edge);
             let a = side.second_derivative(mine, normal);
             let b = other.second_derivative(theirs, normal);
@@ -247,6 +263,11 @@ impl PsBasis {
 /// with their areas and barycentric gradients.
 struct PsSide {
     vertices: [usize; 3],
+    /// How thin pieces weigh.
+    thin: ThinPieces,
+    /// The pieces' weights in the jump energy: 1, or with [`ThinPieces::Faded`] their
+    /// [`shape_weight`].
+    shape: [f64; 6],
     stencil: super::net::NetStencil,
     pieces: [crate::geometry::Triangle2; 6],
     areas: [f64; 6],
@@ -254,12 +275,17 @@ struct PsSide {
 }
 
 impl PsSide {
-    fn new(basis: &PsBasis, t: usize) -> Self {
+    fn new(basis: &PsBasis, t: usize, thin: ThinPieces) -> Self {
         let pieces = basis.refinement().sub_triangles(basis.triangulation(), t);
         PsSide {
             vertices: basis.triangulation().triangle(t),
             stencil: basis.stencil(t),
             areas: std::array::from_fn(|k| pieces[k].area()),
+            thin,
+            shape: std::array::from_fn(|k| match thin {
+                ThinPieces::Kept => 1.0,
+                ThinPieces::Faded => shape_weight(&pieces[k]),
+            }),
             gradients: std::array::from_fn(|k| {
                 pieces[k]
                     .bary_map()
@@ -296,6 +322,31 @@ fn unit_normal(d: nalgebra::Vector2<f64>) -> nalgebra::Vector2<f64> {
 fn jump_weight(len2: f64, area: f64) -> f64 {
     (4.0 * area / len2).min(1.0)
 }
+
+/// How the jumps at thin pieces weigh in the Hessian-jump energy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ThinPieces {
+    /// Like all others (up to the thinness across the edge of the module docs).
+    Kept,
+    /// Also multiplied by the smaller [`shape_weight`] of the two pieces.
+    Faded,
+}
+
+/// The weight of the jumps at a piece: 1, unless the piece is thin, its smallest height
+/// less than [`THIN`] × its longest side; then (ratio / THIN)⁴: the squared jumps the fixed
+/// values force there grow like ratio⁻⁴, and the weight keeps them of the size of the
+/// others'.
+fn shape_weight(t: &crate::geometry::Triangle2) -> f64 {
+    let longest2 = (0..3)
+        .map(|k| (t.v[(k + 1) % 3] - t.v[k]).norm_squared())
+        .fold(0.0, f64::max);
+    let ratio = 2.0 * t.area().abs() / longest2;
+    (ratio / THIN).min(1.0).powi(4)
+}
+
+/// Smallest height over longest side below which a piece's jumps fade
+/// ([`ThinPieces::Faded`]).
+const THIN: f64 = 0.05;
 
 /// One element's local matrix over its vertices' control values.
 struct Element {
@@ -410,6 +461,7 @@ mod tests {
     #[test]
     fn energies_match_piecewise_second_derivatives_of_random_splines() {
         let mut r = rng(82);
+        let mut total_faded = 0;
         for (name, t) in catalogue(3) {
             let b = Arc::new(PsBasis::optimal(t.clone()).unwrap());
             let n = b.triangulation().vertex_count();
@@ -420,6 +472,16 @@ mod tests {
             // Second derivatives from the evaluated jets at each piece's centroid.
             let mut thin = 0.0;
             let mut jumps = 0.0;
+            // The interpolation energy: each jump also weighted by the smaller of
+            // min(1, 20 h / L)⁴ of its two pieces (h the smallest height, L the longest side).
+            let mut faded = 0.0;
+            let fade = |p: &crate::geometry::Triangle2| {
+                let sides = [p.v[1] - p.v[0], p.v[2] - p.v[1], p.v[0] - p.v[2]];
+                let longest = sides.iter().map(|d| d.norm()).fold(0.0, f64::max);
+                let height = 2.0 * p.area().abs() / longest;
+                (20.0 * height / longest).min(1.0).powi(4)
+            };
+            let mut faded_pieces = 0;
             let hess = |tr: usize, k: usize| {
                 let piece = b.sub_triangle(tr, k);
                 let jet = s.jet_on_patch(crate::ps::PatchId::new(tr, k), piece.centroid());
@@ -436,6 +498,8 @@ mod tests {
                     let len2 = (pieces[k].v[1] - pieces[k].v[2]).norm_squared();
                     let w = (4.0 * (pieces[k].area() + pieces[next].area()) / len2).min(1.0);
                     jumps += w * sq_frob(h, hn);
+                    faded += fade(&pieces[k]).min(fade(&pieces[next])) * w * sq_frob(h, hn);
+                    faded_pieces += usize::from(fade(&pieces[k]) < 1.0);
                 }
                 for c in 0..3 {
                     let Some(n) = tri.neighbor(tr, crate::ps::refinement::edge_to_local(c)) else {
@@ -460,12 +524,20 @@ mod tests {
                         let w = (4.0 * (pieces[mine].area() + np[theirs].area())
                             / (a1 - a0).norm_squared())
                         .min(1.0);
-                        jumps += w * sq_frob(hess(tr, mine), hess(n, theirs));
+                        let square = sq_frob(hess(tr, mine), hess(n, theirs));
+                        jumps += w * square;
+                        faded += fade(&pieces[mine]).min(fade(&np[theirs])) * w * square;
                     }
                 }
             }
             let q_thin = b.energy_matrix(Energy::ThinPlate).quadratic_form(&ctrl);
             let q_jump = b.energy_matrix(Energy::HessianJumps).quadratic_form(&ctrl);
+            let q_faded = b.interpolation_energy_matrix().quadratic_form(&ctrl);
+            assert!(
+                (q_faded - faded).abs() <= 1e-10 * faded,
+                "{name}: {q_faded} vs {faded}"
+            );
+            total_faded += faded_pieces;
             assert!(
                 (q_thin - thin).abs() <= 1e-10 * thin,
                 "{name}: {q_thin} vs {thin}"
@@ -475,6 +547,7 @@ mod tests {
                 "{name}: {q_jump} vs {jumps}"
             );
         }
+        assert!(total_faded > 0, "some pieces are thin enough to fade");
     }
 
     /// Σ |Q_ab| |c_a| |c_b|: the size of the terms whose sum is cᵀQc.

@@ -1,5 +1,7 @@
 //! The global gradient estimator: the gradients whose Hermite PS-spline through the values
-//! has the least Hessian-jump energy ([`Energy::HessianJumps`]), found by one sparse solve.
+//! has the least Hessian-jump energy ([`crate::ps::Energy::HessianJumps`], with the jumps at
+//! needle and sliver pieces faded: [`PsBasis::interpolation_energy_matrix`]), found by one
+//! sparse solve.
 //!
 //! With values f_i fixed and gradients g_i free, the control values are c_ij = f_i +
 //! g_i · (Q_ij − V_i) (the Hermite map of [`PsBasis::hermite_coefficients`]), so the energy
@@ -20,7 +22,7 @@
 use nalgebra::Vector2;
 
 use super::local::{GradientError, estimate_gradients};
-use crate::ps::{Energy, PsBasis};
+use crate::ps::PsBasis;
 use crate::sparse::{SparseError, SpdPattern};
 
 /// The anchor's weight relative to each vertex's own stiffness (see the module docs).
@@ -71,7 +73,7 @@ pub(super) fn anchored_global_gradients(
     let n = basis.triangulation().vertex_count();
     assert_eq!(values.len(), n, "one value per vertex");
     assert_eq!(local.len(), n, "one local gradient per vertex");
-    let q = basis.energy_matrix(Energy::HessianJumps);
+    let q = basis.interpolation_energy_matrix();
     let hermite: Vec<[[f64; 3]; 3]> = (0..n).map(|i| basis.hermite_map(i)).collect();
     let mut positions = Vec::with_capacity(4 * q.block_count());
     let mut entries = Vec::with_capacity(4 * q.block_count());
