@@ -94,13 +94,14 @@ impl PsBasis {
         self.energy_matrix_with(energy, ThinPieces::Kept)
     }
 
-    /// The Hessian-jump energy for estimating gradients of an interpolant, whose values are
-    /// fixed: jumps at needle-shaped and sliver pieces fade out ([`ThinPieces::Faded`]).
-    /// There the fixed values force second derivatives of the order of the data's deviation
-    /// from a quadratic divided by the piece's thickness², and minimising their squares
-    /// bends the gradients of every nearby vertex (errors of 1e6 on jittered grids whose
-    /// boundary rows are nearly collinear, where Delaunay leaves slivers along the hull).
-    pub fn interpolation_energy_matrix(&self) -> Block3Matrix {
+    /// The Hessian-jump energy for fitting data (gradients of an interpolant, smoothing
+    /// fits): jumps at needle-shaped and sliver pieces fade out ([`ThinPieces::Faded`]).
+    /// There values fixed by the data force second derivatives of the order of the data's
+    /// deviation from a quadratic divided by the piece's thickness², and minimising their
+    /// squares bends the gradients of every nearby vertex (errors of 1e6 on jittered grids
+    /// whose boundary rows are nearly collinear, where Delaunay leaves slivers along the
+    /// hull) or, next to the data's terms, makes the system singular in rounding.
+    pub fn faded_jump_energy_matrix(&self) -> Block3Matrix {
         self.energy_matrix_with(Energy::HessianJumps, ThinPieces::Faded)
     }
 
@@ -532,7 +533,7 @@ mod tests {
             }
             let q_thin = b.energy_matrix(Energy::ThinPlate).quadratic_form(&ctrl);
             let q_jump = b.energy_matrix(Energy::HessianJumps).quadratic_form(&ctrl);
-            let q_faded = b.interpolation_energy_matrix().quadratic_form(&ctrl);
+            let q_faded = b.faded_jump_energy_matrix().quadratic_form(&ctrl);
             assert!(
                 (q_faded - faded).abs() <= 1e-10 * faded,
                 "{name}: {q_faded} vs {faded}"

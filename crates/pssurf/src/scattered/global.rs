@@ -1,6 +1,6 @@
 //! The global gradient estimator: the gradients whose Hermite PS-spline through the values
 //! has the least Hessian-jump energy ([`crate::ps::Energy::HessianJumps`], with the jumps at
-//! needle and sliver pieces faded: [`PsBasis::interpolation_energy_matrix`]), found by one
+//! needle and sliver pieces faded: [`PsBasis::faded_jump_energy_matrix`]), found by one
 //! sparse solve.
 //!
 //! With values f_i fixed and gradients g_i free, the control values are c_ij = f_i +
@@ -73,7 +73,7 @@ pub(super) fn anchored_global_gradients(
     let n = basis.triangulation().vertex_count();
     assert_eq!(values.len(), n, "one value per vertex");
     assert_eq!(local.len(), n, "one local gradient per vertex");
-    let q = basis.interpolation_energy_matrix();
+    let q = basis.faded_jump_energy_matrix();
     let hermite: Vec<[[f64; 3]; 3]> = (0..n).map(|i| basis.hermite_map(i)).collect();
     let mut positions = Vec::with_capacity(4 * q.block_count());
     let mut entries = Vec::with_capacity(4 * q.block_count());

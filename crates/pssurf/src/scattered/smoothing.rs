@@ -178,7 +178,10 @@ pub fn smoothing_fit(
 ) -> Result<SmoothingFit, SmoothingError> {
     check_input(points, values, energy, smoothing)?;
     let rows = DesignRows::new(&basis, points)?;
-    let q = basis.energy_matrix(energy);
+    let q = match energy {
+        Energy::HessianJumps => basis.faded_jump_energy_matrix(),
+        Energy::ThinPlate => basis.energy_matrix(energy),
+    };
     let mut btb = q.zeroed();
     let mut btz = vec![0.0; 3 * q.vertex_count()];
     rows.normal_equations(values, &mut btb, &mut btz);
@@ -270,7 +273,7 @@ fn check_input(
 /// bounding box ([`coarse_triangulation`](super::coarse_triangulation)), or, when m ≥ N, on
 /// the Delaunay triangulation of the data points themselves (of nearly coincident points,
 /// see [`NEAR_DUPLICATE`](super::NEAR_DUPLICATE), only the first); with the incentre split
-/// and optimal PS-triangles.
+/// and optimal PS-triangles. Points may repeat (repeated measurements).
 pub fn smooth_scattered(
     points: &[Point2<f64>],
     values: &[f64],
@@ -279,12 +282,8 @@ pub fn smooth_scattered(
     smoothing: Smoothing,
     on_trial: &mut dyn FnMut(&Trial),
 ) -> Result<SmoothingFit, SmoothingError> {
+    // Repeated measurements at one (x, y) are welcome: least squares averages them.
     check_input(points, values, energy, smoothing)?;
-    if let Some((first, second)) = crate::triangulation::duplicate_points(points) {
-        return Err(
-            crate::triangulation::TriangulationError::DuplicateVertex { first, second }.into(),
-        );
-    }
     let basis = if m < points.len() {
         let tri = super::coarse_triangulation(points, m)?;
         // The grid is no finer than the coordinates resolve, so this is not expected; its
