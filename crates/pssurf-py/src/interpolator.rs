@@ -112,6 +112,19 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSplin
     if let Some(k) = data.values.iter().position(|v| !v.is_finite()) {
         return Err(format!("the value of point {k} is not finite"));
     }
+    // Checked in the caller's numbering, before any reordering.
+    if let Some(g) = &data.gradients {
+        if g.len() != data.points.len() {
+            return Err(format!(
+                "{} points but {} gradients",
+                data.points.len(),
+                g.len()
+            ));
+        }
+        if let Some(k) = g.iter().position(|g| !(g.x.is_finite() && g.y.is_finite())) {
+            return Err(format!("the gradient of point {k} is not finite"));
+        }
+    }
     check_coordinates(&data.points).map_err(|e| err(&e))?;
     let Data {
         mut points,
@@ -137,12 +150,7 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSplin
     };
     let basis = Arc::new(data_basis(tri, split).map_err(|e| err(&e))?);
     let gradients = match gradients {
-        Some(g) => {
-            if let Some(k) = g.iter().position(|g| !(g.x.is_finite() && g.y.is_finite())) {
-                return Err(format!("the gradient of point {k} is not finite"));
-            }
-            g
-        }
+        Some(g) => g,
         None => {
             estimate_gradients_by(&basis, &values, method)
                 .map_err(|e| err(&e))?

@@ -162,6 +162,7 @@ impl PySurface {
 
     /// The wavelet decomposition over `levels` levels (thesis 4.5).
     fn wavelet(&self, py: Python<'_>, levels: u32) -> PyResult<Wavelet> {
+        check_levels(levels)?;
         let u = self.uniform("wavelet")?;
         let d = py
             .detach(|| u.wavelet_transform(levels))
@@ -180,6 +181,7 @@ impl PySurface {
         threshold: Option<&Bound<'_, PyAny>>,
         mode: &str,
     ) -> PyResult<PySurface> {
+        check_levels(levels)?;
         let u = self.uniform("denoise")?;
         let rule = threshold.map_or(Ok(ThresholdRule::Universal), threshold_rule)?;
         let mode = match mode {
@@ -232,6 +234,15 @@ fn threshold_rule(t: &Bound<'_, PyAny>) -> PyResult<ThresholdRule> {
                     "threshold must be \"universal\", \"sure\", \"gcv\", a number or \"p%\", not {s:?}"
                 ))
             }),
+    }
+}
+
+/// Wavelet levels must lie in 1…40, as the CLI's `--levels` (the grid halves per level).
+fn check_levels(levels: u32) -> PyResult<()> {
+    if (1..=40).contains(&levels) {
+        Ok(())
+    } else {
+        Err(value_error(format!("levels must be in 1…40, not {levels}")))
     }
 }
 

@@ -211,6 +211,10 @@ def test_inputs_are_converted(rng):
         (np.array([[0, 0], [1, 0], [0, np.inf]]), np.zeros(3), {}, "finite"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros((3, 2)), {}, "values must have shape"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), ["a", "b", "c"], {}, "real numbers"),
+        # Gradients: one per point, finite, named by the caller's row.
+        (np.random.default_rng(2).random((10, 2)), np.zeros(10), {"gradients": np.zeros((9, 2))}, "10 points but 9 gradients"),
+        (np.random.default_rng(2).random((10, 2)), np.zeros(10), {"gradients": np.zeros((11, 2))}, "10 points but 11 gradients"),
+        (np.random.default_rng(2).random((10, 2)), np.zeros(10), {"gradients": np.where(np.arange(20).reshape(10, 2) == 7, np.nan, 0.0)}, "gradient of point 3 is not finite"),
     ],
 )
 def test_bad_input_raises_value_error(points, values, kwargs, message):

@@ -88,6 +88,10 @@ def test_wavelet_and_denoise():
     assert d.piece_count == u.piece_count
     with pytest.raises(ValueError, match="threshold"):
         u.denoise(2, threshold="lots")
+    # Levels 1…40, as the CLI's --levels.
+    for bad in (lambda: u.wavelet(0), lambda: u.denoise(0)):
+        with pytest.raises(ValueError, match="levels must be in 1…40"):
+            bad()
     with pytest.raises(ValueError, match="uniform"):
         pssurf.PsInterpolator(np.eye(3)[:, :2] + [[0, 0], [0, 0], [1, 1]], [0, 1, 2]).surface().subdivide(1)
 
@@ -148,3 +152,13 @@ def test_binary_and_json_files_agree(rng, tmp_path):
         (tmp_path / "cut.psb").write_bytes(data[: len(data) // 2])
         with pytest.raises(ValueError, match="truncated"):
             pssurf.load(tmp_path / "cut.psb")
+
+
+def test_smoothing_input_errors_and_repeated_points(rng):
+    with pytest.raises(ValueError, match="no data points"):
+        pssurf.fit_smooth(np.zeros((0, 2)), np.zeros(0))
+    # Repeated measurements at one (x, y) are averaged, not refused.
+    p = rng.random((60, 2))
+    f, report = pssurf.fit_smooth(np.r_[p, p], np.r_[p[:, 0] + 0.1, p[:, 0] - 0.1], vertices=20, smooth=1e-9)
+    assert report["rms_residual"] > 0.09
+    assert np.nanmax(np.abs(f(p) - p[:, 0])) < 1e-3

@@ -234,6 +234,8 @@ def fit_smooth(
     vals = _float_array(values, "values")
     if vals.ndim != 1:
         raise ValueError(f"values must have shape (n,), not {vals.shape}")
+    if len(pts) == 0:
+        raise ValueError("no data points to fit")
     if vertices is None:
         vertices = min(len(pts), 1000)
     if not isinstance(vertices, (int, np.integer)):

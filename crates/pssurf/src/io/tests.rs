@@ -792,6 +792,40 @@ fn truncated_and_corrupted_binary_files_are_refused() {
     }
 }
 
+/// The document inside a binary header is checked like a JSON file: another format name or
+/// version there is refused (it used to load).
+#[test]
+fn binary_documents_of_another_format_or_version_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.psb");
+    save(&binary_samples()[0], &path).unwrap();
+    let good = std::fs::read(&path).unwrap();
+    let inner = |from: &str| {
+        good.windows(from.len())
+            .enumerate()
+            .filter(|(_, w)| *w == from.as_bytes())
+            .map(|(k, _)| k)
+            .nth(1)
+            .expect("the document repeats the field")
+    };
+    for (from, to, message) in [
+        ("\"version\":1", "\"version\":9", "version 9"),
+        (
+            "\"format\":\"pssurf\"",
+            "\"format\":\"pssu2f\"",
+            "not a pssurf",
+        ),
+    ] {
+        let mut b = good.clone();
+        let at = inner(from);
+        b[at..at + to.len()].copy_from_slice(to.as_bytes());
+        let bad = dir.path().join("bad.psb");
+        std::fs::write(&bad, &b).unwrap();
+        let e = load(&bad).unwrap_err().to_string();
+        assert!(e.contains(message), "{from}: {e}");
+    }
+}
+
 /// A binary file whose header claims absurd chunk sizes is refused before anything is
 /// allocated for them (the claim is checked against the bytes left in the file).
 #[test]

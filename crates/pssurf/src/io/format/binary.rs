@@ -319,6 +319,13 @@ fn read_document(r: &mut Limited) -> Result<FileV1, ReadError> {
     }
     skip_padding(r, len, "header")?;
     let mut file = header.document;
+    // The embedded document's own fields are checked as in a JSON file.
+    if file.format != FORMAT_NAME {
+        return Err(FormatError::NotPssurf.into());
+    }
+    if file.version != FORMAT_VERSION as u64 {
+        return Err(FormatError::UnsupportedVersion(file.version).into());
+    }
     let mut seen: Vec<&str> = Vec::new();
     for chunk in &header.chunks {
         let (field, dtype, width) = spec(&chunk.field)
