@@ -207,6 +207,17 @@ fn bad_inputs_give_clear_errors_and_no_output() {
             "collinear",
         ),
         (
+            // Ten points within 1e-9 of the line y = 2x: split points cannot be placed in
+            // their slivers; the message says why and names rows (it used to ask for the
+            // incentres, which were in use).
+            s(&write(
+                d.path(),
+                "line.csv",
+                "x,y,z\n0.87024920397008465,1.740498405907617,0.87\n0.28681720908755537,0.57363441958553418,0.28\n0.60314815005156186,1.2062963000554914,0.6\n0.77753408292017878,1.555068168362685,0.77\n0.71607462960356527,1.4321492600333487,0.71\n0.91538012049050754,1.8307602412587956,0.91\n0.86039364918288463,1.7207872977083383,0.86\n0.91823762904876238,1.836475259489994,0.91\n0.026587734467597213,0.053175468428905311,0.02\n0.43724800012950871,0.87449600182896658,0.43\n",
+            )),
+            "line.csv: rows 4, 3 and 5 are nearly collinear",
+        ),
+        (
             s(&write(d.path(), "f.csv", "x,y,z\n0,0,NaN\n1,0,1\n0,1,2\n")),
             "not a finite number",
         ),

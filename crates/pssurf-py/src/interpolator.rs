@@ -7,9 +7,9 @@ use nalgebra::{Point2, Vector2};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pssurf::prelude::*;
 use pssurf::scattered::{
-    GradientMethod, data_basis, estimate_gradients_by, hermite_spline, interpolate,
+    FitError, GradientMethod, data_basis, estimate_gradients_by, hermite_spline, interpolate,
 };
-use pssurf::triangulation::{check_coordinates, duplicate_points, morton_order};
+use pssurf::triangulation::{MAX_COORDINATE, check_coordinates, duplicate_points, morton_order};
 use pyo3::prelude::*;
 
 use crate::arrays::{float_rows, points_from, rows3, slice, triangles_from, vectors_from};
@@ -109,8 +109,12 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSplin
             .map(|i| i.spline)
             .map_err(|e| err(&e));
     }
-    if let Some(k) = data.values.iter().position(|v| !v.is_finite()) {
-        return Err(format!("the value of point {k} is not finite"));
+    if let Some(k) = data
+        .values
+        .iter()
+        .position(|v| !(v.abs() <= MAX_COORDINATE))
+    {
+        return Err(FitError::NonFiniteValue(k).to_string());
     }
     // Checked in the caller's numbering, before any reordering.
     if let Some(g) = &data.gradients {
@@ -132,6 +136,8 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSplin
         mut gradients,
         triangles,
     } = data;
+    // Vertex k of the triangulation is point order[k] (no reordering: None).
+    let mut order: Option<Vec<u32>> = None;
     let tri = match triangles {
         Some(t) => Triangulation::try_new(points, t).map_err(|e| err(&e))?,
         None => {
@@ -141,14 +147,16 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSplin
                 ));
             }
             // A space-filling-curve order keeps neighbours close in memory.
-            let order = morton_order(&points);
-            points = order.iter().map(|&i| points[i as usize]).collect();
-            values = order.iter().map(|&i| values[i as usize]).collect();
-            gradients = gradients.map(|g| order.iter().map(|&i| g[i as usize]).collect());
+            let o = morton_order(&points);
+            points = o.iter().map(|&i| points[i as usize]).collect();
+            values = o.iter().map(|&i| values[i as usize]).collect();
+            gradients = gradients.map(|g| o.iter().map(|&i| g[i as usize]).collect());
+            order = Some(o);
             Triangulation::delaunay(points).map_err(|e| err(&e))?
         }
     };
-    let basis = Arc::new(data_basis(tri, split).map_err(|e| err(&e))?);
+    let point_of = |v: usize| order.as_ref().map_or(v, |o| o[v] as usize);
+    let basis = Arc::new(data_basis(tri, split).map_err(|e| err(&e.map_points(point_of)))?);
     let gradients = match gradients {
         Some(g) => g,
         None => {

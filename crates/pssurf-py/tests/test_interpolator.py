@@ -200,7 +200,7 @@ def test_inputs_are_converted(rng):
     [
         (np.zeros((5, 3)), np.zeros(5), {}, "shape"),
         (np.random.default_rng(1).random((5, 2)), np.zeros(4), {}, "5 points but 4 values"),
-        (np.array([[0, 0], [1, 0], [0, 1], [1, 1.0]]), np.array([0, 1, np.nan, 2]), {}, "not finite"),
+        (np.array([[0, 0], [1, 0], [0, 1], [1, 1.0]]), np.array([0, 1, np.nan, 2]), {}, "value of point 2 is not a finite number"),
         (np.array([[0, 0], [1, 0], [0, 1], [0, 1.0]]), np.zeros(4), {}, "same"),
         (np.array([[0, 0], [1, 1], [2, 2], [3, 3.0]]), np.zeros(4), {}, "collinear"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"gradient_method": "magic"}, "gradient_method"),
@@ -211,6 +211,9 @@ def test_inputs_are_converted(rng):
         (np.array([[0, 0], [1, 0], [0, np.inf]]), np.zeros(3), {}, "finite"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros((3, 2)), {}, "values must have shape"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), ["a", "b", "c"], {}, "real numbers"),
+        # Values beyond ±1e60 named by the caller's row, with or without gradients.
+        (np.random.default_rng(2).random((10, 2)), np.where(np.arange(10) == 7, 1e308, 0.0), {}, "value of point 7"),
+        (np.random.default_rng(2).random((10, 2)), np.where(np.arange(10) == 7, 1e308, 0.0), {"gradients": np.zeros((10, 2))}, "value of point 7"),
         # Gradients: one per point, finite, named by the caller's row.
         (np.random.default_rng(2).random((10, 2)), np.zeros(10), {"gradients": np.zeros((9, 2))}, "10 points but 9 gradients"),
         (np.random.default_rng(2).random((10, 2)), np.zeros(10), {"gradients": np.zeros((11, 2))}, "10 points but 11 gradients"),

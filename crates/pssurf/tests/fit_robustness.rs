@@ -496,3 +496,49 @@ fn random_adversarial_sets_fit_and_reload() {
         "{refused} refusals in {cases} sets"
     );
 }
+
+/// Points within 1e-9 of a line: every failure of the split names the nearly collinear
+/// points (never "choose other split points, e.g. the incentres", which were in use), and
+/// the points are the caller's; a value beyond ±1e60 is named by its index.
+#[test]
+fn nearly_collinear_points_are_named_as_such() {
+    let mut collinear = 0;
+    for seed in 0..20 {
+        let mut r = ChaCha8Rng::seed_from_u64(300 + seed);
+        let pts: Vec<Point2<f64>> = (0..10)
+            .map(|_| {
+                let x: f64 = r.random_range(0.0..1.0);
+                Point2::new(x, 2.0 * x + r.random_range(-1e-9..1e-9))
+            })
+            .collect();
+        let z: Vec<f64> = pts.iter().map(|p| p.x).collect();
+        match interpolate(&pts, &z, GradientMethod::Local) {
+            Ok(_) => {}
+            Err(FitError::NearlyCollinear {
+                vertices,
+                height,
+                length,
+            }) => {
+                let t = Triangle2::new(pts[vertices[0]], pts[vertices[1]], pts[vertices[2]]);
+                assert!(height < 1e-6 * length && t.area().abs() < 1e-6 * length * length);
+                collinear += 1;
+            }
+            Err(FitError::Triangulation(TriangulationError::NearlyCollinearPoints { points })) => {
+                let [a, b, c] = points.map(|k| pts[k]);
+                let t = Triangle2::new(a, b, c);
+                let l = (b - a).norm().max((c - b).norm()).max((a - c).norm());
+                assert!(t.area().abs() <= 1e-12 * l * l, "seed {seed}: {points:?}");
+                collinear += 1;
+            }
+            Err(e) => panic!("seed {seed}: {e}"),
+        }
+    }
+    assert!(collinear > 0, "some sets fail at their slivers");
+    let pts = grid(5, 0.0, 1);
+    let mut z = vec![0.0; pts.len()];
+    z[7] = 1e308;
+    assert!(matches!(
+        interpolate(&pts, &z, GradientMethod::Local),
+        Err(FitError::NonFiniteValue(7))
+    ));
+}

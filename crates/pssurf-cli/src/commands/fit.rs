@@ -198,18 +198,21 @@ pub fn run(args: &FitArgs) -> Result<()> {
                     first + 1,
                     second + 1
                 ),
+                TriangulationError::NearlyCollinearPoints { points } => {
+                    let [a, b, c] = points.map(|v| row_of[v] + 1);
+                    anyhow::anyhow!(
+                        "{}: rows {a}, {b} and {c} are nearly collinear (their Delaunay triangle has numerically zero area): remove or move one of them",
+                        args.data.display()
+                    )
+                }
                 e => anyhow::anyhow!("{}: cannot triangulate: {e}", args.data.display()),
             })?,
     };
     warn_slivers(&tri, &row_of);
-    let basis = Arc::new(data_basis(tri, args.split.into()).map_err(|e| match e {
-        FitError::BeyondPrecision {
-            vertices,
-            height,
-            magnitude,
-        } => beyond_precision(&args.data, vertices.map(|v| row_of[v]), height, magnitude),
-        e => anyhow::anyhow!(e),
-    })?);
+    let basis = Arc::new(
+        data_basis(tri, args.split.into())
+            .map_err(|e| basis_error(&args.data, e.map_points(|v| row_of[v])))?,
+    );
     let (gradients, method) = match gradient {
         Some((a, b)) => {
             let g: Vec<Vector2<f64>> = rows.iter().map(|r| Vector2::new(r[a], r[b])).collect();
@@ -496,14 +499,30 @@ fn user_coarse_basis(path: &Path, triangles: Option<&Path>) -> Result<PsBasis> {
         None => Triangulation::delaunay(vertices)
             .with_context(|| format!("{}: cannot triangulate", path.display()))?,
     };
-    data_basis(tri, SplitRule::Incenter).map_err(|e| match e {
+    data_basis(tri, SplitRule::Incenter).map_err(|e| basis_error(path, e))
+}
+
+/// A failure of the PS basis on the data of `path`, its point indices being 0-based rows.
+fn basis_error(path: &Path, e: FitError) -> anyhow::Error {
+    match e {
         FitError::BeyondPrecision {
             vertices,
             height,
             magnitude,
         } => beyond_precision(path, vertices, height, magnitude),
+        FitError::NearlyCollinear {
+            vertices,
+            height,
+            length,
+        } => {
+            let [a, b, c] = vertices.map(|r| r + 1);
+            anyhow::anyhow!(
+                "{}: rows {a}, {b} and {c} are nearly collinear (their triangle is {height:.1e} high and {length:.1e} long): the split points of so thin a triangle cannot be placed reliably; remove or move one of them",
+                path.display()
+            )
+        }
         e => anyhow::anyhow!("{}: {e}", path.display()),
-    })
+    }
 }
 
 /// Refuses coordinates outside the range pssurf supports, naming the row (the table reader already refuses

@@ -740,7 +740,9 @@ fn triangulation_error(e: TriangulationError) -> FormatError {
         | E::DuplicateTriangle { triangle, .. }
         | E::NonManifoldEdge { triangle, .. }
         | E::NonConforming { triangle, .. } => format!("domain.triangles[{triangle}]"),
-        E::NoTriangles | E::TooLarge(_) | E::CollinearPoints => "domain.triangles".to_string(),
+        E::NoTriangles | E::TooLarge(_) | E::CollinearPoints | E::NearlyCollinearPoints { .. } => {
+            "domain.triangles".to_string()
+        }
     };
     invalid(at, e)
 }

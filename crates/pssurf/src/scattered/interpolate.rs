@@ -9,7 +9,9 @@ use super::global::{GlobalGradientError, anchored_global_gradients};
 use super::local::{GradientError, GradientFit, estimate_gradients};
 use super::merge::{NEAR_DUPLICATE, merge_near_duplicates};
 use crate::ps::{Hermite, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule};
-use crate::triangulation::{Triangulation, TriangulationError, duplicate_points, morton_order};
+use crate::triangulation::{
+    MAX_COORDINATE, Triangulation, TriangulationError, duplicate_points, morton_order,
+};
 
 /// How the gradients at the vertices are estimated from the values.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -37,7 +39,7 @@ pub enum FitError {
         values: usize,
     },
     /// A value is NaN or infinite.
-    #[error("the value of point {0} is not finite")]
+    #[error("the value of point {0} is not a finite number within ±1e60")]
     NonFiniteValue(usize),
     /// The points cannot be triangulated (duplicates, collinear, non-finite…).
     #[error(transparent)]
@@ -65,7 +67,60 @@ pub enum FitError {
         /// The largest coordinate magnitude of the points.
         magnitude: f64,
     },
+    /// The PS refinement failed at a triangle thinner than [`COLLINEAR_HINT`] × its longest
+    /// side: its corners are nearly collinear, and its split points cannot be placed
+    /// reliably with any split rule.
+    #[error(
+        "points {}, {} and {} are nearly collinear (their triangle is {height:.1e} high and {length:.1e} long): the split points of so thin a triangle cannot be placed reliably; remove or move one of them",
+        vertices[0], vertices[1], vertices[2]
+    )]
+    NearlyCollinear {
+        /// The triangle's vertices (indices of the points given).
+        vertices: [usize; 3],
+        /// Its smallest height.
+        height: f64,
+        /// Its longest side.
+        length: f64,
+    },
 }
+
+impl FitError {
+    /// The same error with the point indices it names mapped by `index` (vertex numbers of
+    /// a reordered triangulation back to the caller's points).
+    pub fn map_points(self, index: impl Fn(usize) -> usize) -> Self {
+        match self {
+            FitError::BeyondPrecision {
+                vertices,
+                height,
+                magnitude,
+            } => FitError::BeyondPrecision {
+                vertices: vertices.map(&index),
+                height,
+                magnitude,
+            },
+            FitError::NearlyCollinear {
+                vertices,
+                height,
+                length,
+            } => FitError::NearlyCollinear {
+                vertices: vertices.map(&index),
+                height,
+                length,
+            },
+            FitError::NonFiniteValue(k) => FitError::NonFiniteValue(index(k)),
+            FitError::Triangulation(TriangulationError::NearlyCollinearPoints { points }) => {
+                FitError::Triangulation(TriangulationError::NearlyCollinearPoints {
+                    points: points.map(&index),
+                })
+            }
+            e => e,
+        }
+    }
+}
+
+/// Relative thinness (smallest height over longest side) below which a failure of the PS
+/// refinement is blamed on nearly collinear points ([`FitError::NearlyCollinear`]).
+pub const COLLINEAR_HINT: f64 = 1e-6;
 
 /// Relative detail (a triangle's smallest height over the largest coordinate magnitude,
 /// about 4.5e5 units in the last place) below which a failure of the PS refinement is
@@ -97,16 +152,33 @@ pub fn data_basis(tri: Triangulation, split: SplitRule) -> Result<PsBasis, FitEr
     match PsBasis::new(tri.clone(), split, &PsTriangleChoice::Optimal) {
         Ok(b) => Ok(b),
         Err(e) => {
-            let finest = suspects(&e, &tri)
+            // The thinnest suspect relative to its size.
+            let thinnest = suspects(&e, &tri)
                 .into_iter()
-                .map(|t| (tri.triangle_geometry(t).min_height(), t))
-                .min_by(|a, b| a.0.total_cmp(&b.0));
-            match finest {
-                Some((height, t)) if height < PRECISION_HINT * magnitude => {
+                .map(|t| {
+                    let g = tri.triangle_geometry(t);
+                    let length = (0..3)
+                        .map(|k| (g.v[(k + 1) % 3] - g.v[k]).norm())
+                        .fold(0.0, f64::max);
+                    (g.min_height(), length, t)
+                })
+                .min_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)));
+            match thinnest {
+                // Far from the origin relative to its size: the coordinates' precision.
+                Some((height, length, t))
+                    if height < PRECISION_HINT * magnitude && length < 1e-3 * magnitude =>
+                {
                     Err(FitError::BeyondPrecision {
                         vertices: tri.triangle(t),
                         height,
                         magnitude,
+                    })
+                }
+                Some((height, length, t)) if height < COLLINEAR_HINT * length => {
+                    Err(FitError::NearlyCollinear {
+                        vertices: tri.triangle(t),
+                        height,
+                        length,
                     })
                 }
                 _ => Err(e.into()),
@@ -214,10 +286,10 @@ pub fn interpolate(
             values: values.len(),
         });
     }
-    if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+    // Checked in the input order, so that errors name the data points.
+    if let Some(k) = values.iter().position(|v| !(v.abs() <= MAX_COORDINATE)) {
         return Err(FitError::NonFiniteValue(k));
     }
-    // Checked in the input order, so that errors name the data points.
     crate::triangulation::check_coordinates(points)?;
     if let Some((first, second)) = duplicate_points(points) {
         return Err(TriangulationError::DuplicateVertex { first, second }.into());
@@ -231,19 +303,11 @@ pub fn interpolate(
     let ordered: Vec<Point2<f64>> = order.iter().map(|&k| data.points[k]).collect();
     let z: Vec<f64> = order.iter().map(|&k| data.values[k]).collect();
     let data_index: Vec<usize> = order.iter().map(|&k| data.first_index[k]).collect();
-    let tri = Triangulation::delaunay(ordered)?;
-    let basis = Arc::new(data_basis(tri, SplitRule::Incenter).map_err(|e| match e {
-        FitError::BeyondPrecision {
-            vertices,
-            height,
-            magnitude,
-        } => FitError::BeyondPrecision {
-            vertices: vertices.map(|v| data_index[v]),
-            height,
-            magnitude,
-        },
-        e => e,
-    })?);
+    let tri = Triangulation::delaunay(ordered)
+        .map_err(|e| FitError::from(e).map_points(|v| data_index[v]))?;
+    let basis = Arc::new(
+        data_basis(tri, SplitRule::Incenter).map_err(|e| e.map_points(|v| data_index[v]))?,
+    );
     let (g, gradients) = estimate_gradients_by(&basis, &z, method)?;
     Ok(Interpolant {
         spline: hermite_spline(basis, &z, &g)?,

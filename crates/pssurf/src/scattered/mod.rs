@@ -13,8 +13,8 @@ pub use coarse::coarse_triangulation;
 pub use diagnostics::{NearDuplicate, near_duplicate_distance, near_duplicates, slivers};
 pub use global::{ANCHOR, GlobalGradientError, STRONGER_ANCHORS, estimate_gradients_global};
 pub use interpolate::{
-    FitError, GradientMethod, GradientReport, Interpolant, PRECISION_HINT, data_basis,
-    estimate_gradients_by, hermite_spline, interpolate,
+    COLLINEAR_HINT, FitError, GradientMethod, GradientReport, Interpolant, PRECISION_HINT,
+    data_basis, estimate_gradients_by, hermite_spline, interpolate,
 };
 pub use local::{
     GradientError, GradientFit, MAX_CONDITION, MAX_USABLE_CONDITION, estimate_gradients,

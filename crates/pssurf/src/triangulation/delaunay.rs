@@ -60,7 +60,15 @@ pub(super) fn delaunay(
         .into_iter()
         .map(|k| triangles[k as usize])
         .collect();
-    Ok((Triangulation::try_new(points, triangles)?, peeled))
+    match Triangulation::try_new(points, triangles.clone()) {
+        Ok(t) => Ok((t, peeled)),
+        Err(TriangulationError::DegenerateTriangle { triangle }) => {
+            Err(TriangulationError::NearlyCollinearPoints {
+                points: triangles[triangle],
+            })
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// Relative thickness (twice the area over the longest edge squared, about height / length)

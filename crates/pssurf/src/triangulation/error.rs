@@ -186,4 +186,15 @@ pub enum TriangulationError {
     /// Too few distinct, non-collinear points to triangulate.
     #[error("the points are collinear or too few: no triangle can be formed")]
     CollinearPoints,
+    /// The Delaunay triangulation of the points has a triangle of (numerically) zero area
+    /// inside the domain (only boundary slivers are peeled off): three points nearly on one
+    /// line, with others on both sides.
+    #[error(
+        "points {}, {} and {} are nearly collinear (their Delaunay triangle has numerically zero area): remove or move one of them",
+        points[0], points[1], points[2]
+    )]
+    NearlyCollinearPoints {
+        /// The three points (indices of the points given).
+        points: [usize; 3],
+    },
 }
