@@ -58,3 +58,33 @@ fn human(bytes: u128) -> String {
         b => format!("{:.0} kB", b / 1e3),
     }
 }
+
+/// A non-negative integer argument (a count, a level, a size). Negative, too large and
+/// non-integer values are a `ValueError` naming the value, where pyo3's own conversion to
+/// an unsigned type would raise `OverflowError` or `TypeError`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Count<T>(pub T);
+
+impl<'a, 'py, T: TryFrom<i128>> pyo3::FromPyObject<'a, 'py> for Count<T> {
+    type Error = PyErr;
+
+    fn extract(obj: pyo3::Borrowed<'a, 'py, pyo3::PyAny>) -> Result<Self, Self::Error> {
+        use pyo3::types::PyAnyMethods;
+        let refuse = || {
+            let shown = obj
+                .repr()
+                .map_or_else(|_| "this value".to_string(), |r| r.to_string());
+            value_error(format!(
+                "expected a non-negative integer within range, not {shown}"
+            ))
+        };
+        if obj.is_instance_of::<pyo3::types::PyBool>() {
+            return Err(refuse());
+        }
+        let v: i128 = obj.extract().map_err(|_| refuse())?;
+        if v < 0 {
+            return Err(refuse());
+        }
+        T::try_from(v).map(Count).map_err(|_| refuse())
+    }
+}

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::arrays::{float_rows, float64_array, points_from, rows3};
-use crate::errors::{check_budget, file_error, memory_budget, value_error};
+use crate::errors::{Count, check_budget, file_error, memory_budget, value_error};
 
 /// A surface of any kind (functional or parametric PS, NURPS, UPS, Bézier, NURBS).
 #[pyclass(name = "Surface", module = "pssurf._core", frozen)]
@@ -91,13 +91,14 @@ impl PySurface {
     /// A triangle mesh sampled piece by piece (2^level steps per piece side):
     /// (vertices (n, 3), faces (m, 3), fields) with fields "normal" (n, 3), "uv" (n, 2),
     /// "piece" (n,), and, with curvature, "K", "H", "k1", "k2" (n,).
-    #[pyo3(signature = (level = 3, curvature = true))]
+    #[pyo3(signature = (level = Count(3), curvature = true))]
     fn sample<'py>(
         &self,
         py: Python<'py>,
-        level: u32,
+        level: Count<u32>,
         curvature: bool,
     ) -> PyResult<SampledMesh<'py>> {
+        let Count(level) = level;
         let counts = sample_counts(self.surface.piece_kind(), self.surface.piece_count(), level)
             .filter(|c| c.vertices <= u32::MAX as u64)
             .ok_or_else(|| value_error(format!("level {level} makes more than 2³² vertices")))?;
@@ -147,7 +148,8 @@ impl PySurface {
 
     /// The UPS surface after `times` steps of √3-free dyadic subdivision (thesis 4.3): the
     /// same surface on a lattice twice as fine per step.
-    fn subdivide(&self, py: Python<'_>, times: u32) -> PyResult<PySurface> {
+    fn subdivide(&self, py: Python<'_>, times: Count<u32>) -> PyResult<PySurface> {
+        let Count(times) = times;
         let u = self.uniform("subdivide")?;
         let vertices = (u.grid().vertex_count() as u128)
             .checked_shl(2 * times.min(60))
@@ -161,7 +163,8 @@ impl PySurface {
     }
 
     /// The wavelet decomposition over `levels` levels (thesis 4.5).
-    fn wavelet(&self, py: Python<'_>, levels: u32) -> PyResult<Wavelet> {
+    fn wavelet(&self, py: Python<'_>, levels: Count<u32>) -> PyResult<Wavelet> {
+        let Count(levels) = levels;
         check_levels(levels)?;
         let u = self.uniform("wavelet")?;
         let d = py
@@ -177,10 +180,11 @@ impl PySurface {
     fn denoise(
         &self,
         py: Python<'_>,
-        levels: u32,
+        levels: Count<u32>,
         threshold: Option<&Bound<'_, PyAny>>,
         mode: &str,
     ) -> PyResult<PySurface> {
+        let Count(levels) = levels;
         check_levels(levels)?;
         let u = self.uniform("denoise")?;
         let rule = threshold.map_or(Ok(ThresholdRule::Universal), threshold_rule)?;
@@ -274,9 +278,10 @@ impl Wavelet {
     fn coefficients<'py>(
         &self,
         py: Python<'py>,
-        level: usize,
-        component: usize,
+        level: Count<usize>,
+        component: Count<usize>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (Count(level), Count(component)) = (level, component);
         if level >= self.decomposition.levels() {
             return Err(value_error(format!(
                 "level {level} does not exist (there are {})",
@@ -358,12 +363,13 @@ pub fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PySurface> {
 #[pyo3(signature = (sides, size, height = "0", kind = "parametric", base = 1.0))]
 pub fn ups(
     py: Python<'_>,
-    sides: usize,
-    size: i64,
+    sides: Count<usize>,
+    size: Count<i64>,
     height: &str,
     kind: &str,
     base: f64,
 ) -> PyResult<PySurface> {
+    let (Count(sides), Count(size)) = (sides, size);
     use pssurf::expr::HeightFunction;
     use pssurf::ups::{GraphKind, Lattice, LatticePolygon, UpsGrid, graph_surface_from_formula};
     let kind = match kind {

@@ -270,3 +270,12 @@ def test_vertices_and_triangles(rng):
     assert v.shape == (100, 2) and t.shape[1] == 3
     assert sorted(map(tuple, v)) == sorted(map(tuple, pts))
     assert t.min() == 0 and t.max() == 99
+
+
+def test_derivatives_of_any_order(rng):
+    pts = rng.random((50, 2))
+    f = pssurf.PsInterpolator(pts, pts[:, 0] ** 2)
+    inside = f.vertices.mean(axis=0)
+    for d in (3, 65, 2**40):
+        assert f(*inside, dx=d) == 0.0
+        assert f(*inside, dx=1, dy=d) == 0.0

@@ -162,3 +162,21 @@ def test_smoothing_input_errors_and_repeated_points(rng):
     f, report = pssurf.fit_smooth(np.r_[p, p], np.r_[p[:, 0] + 0.1, p[:, 0] - 0.1], vertices=20, smooth=1e-9)
     assert report["rms_residual"] > 0.09
     assert np.nanmax(np.abs(f(p) - p[:, 0])) < 1e-3
+
+
+def test_counts_out_of_range_are_value_errors():
+    u = pssurf.ups(6, 2)
+    w = u.wavelet(1)
+    for bad in (
+        lambda: u.sample(-1),
+        lambda: u.subdivide(-1),
+        lambda: u.wavelet(-1),
+        lambda: u.denoise(-1),
+        lambda: pssurf.ups(-1, 4),
+        lambda: pssurf.ups(6, 2**70),
+        lambda: w.coefficients(-1, 0),
+        lambda: u.sample(True),
+        lambda: u.sample(1.5),
+    ):
+        with pytest.raises(ValueError, match="non-negative integer"):
+            bad()

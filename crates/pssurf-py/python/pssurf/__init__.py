@@ -71,7 +71,9 @@ def _triangles(triangles):
 def _order(d, name):
     if isinstance(d, (bool, np.bool_)) or not isinstance(d, (int, np.integer)) or d < 0:
         raise ValueError(f"{name} must be an integer ≥ 0, not {d!r}")
-    return int(d)
+    # Any order is accepted: those above 2 are zero on the quadratic pieces, so 3 stands
+    # for all of them.
+    return min(int(d), 3)
 
 
 class PsInterpolator:
