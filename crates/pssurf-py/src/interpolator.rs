@@ -95,7 +95,11 @@ struct Data {
 /// Builds the spline: the library's [`interpolate`] when only values are given on the
 /// Delaunay triangulation with the incentre split; else triangulate (or take the given
 /// triangles), build the basis, and take or estimate the gradients.
-fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSpline<f64>, String> {
+/// The spline, and the groups of nearly coincident points merged into one vertex (indices
+/// of the points given; only the Delaunay path merges).
+type Built = (PsSpline<f64>, Vec<Vec<usize>>);
+
+fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
     if data.points.len() != data.values.len() {
         return Err(format!(
@@ -106,7 +110,7 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSplin
     }
     if data.gradients.is_none() && data.triangles.is_none() && split == SplitRule::Incenter {
         return interpolate(&data.points, &data.values, method)
-            .map(|i| i.spline)
+            .map(|i| (i.spline, i.merged))
             .map_err(|e| err(&e));
     }
     if let Some(k) = data
@@ -165,7 +169,34 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<PsSplin
                 .0
         }
     };
-    hermite_spline(basis, &values, &gradients).map_err(|e| err(&e))
+    let spline = hermite_spline(basis, &values, &gradients).map_err(|e| err(&e))?;
+    Ok((spline, Vec::new()))
+}
+
+/// Merged groups named in warnings, at most.
+const NAMED_GROUPS: usize = 5;
+
+/// A `UserWarning` for each merged group of nearly coincident points (as the CLI warns).
+fn warn_merged(py: Python<'_>, groups: &[Vec<usize>]) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    for g in groups.iter().take(NAMED_GROUPS) {
+        let named: Vec<String> = g.iter().map(|k| k.to_string()).collect();
+        let message = format!(
+            "points {} are nearly coincident: merged into one vertex at their mean, with their mean value",
+            named.join(", ")
+        );
+        let message = std::ffi::CString::new(message).expect("no NUL in the message");
+        PyErr::warn(py, category.as_any(), &message, 2)?;
+    }
+    if groups.len() > NAMED_GROUPS {
+        let message = std::ffi::CString::new(format!(
+            "{} more groups of nearly coincident points were merged",
+            groups.len() - NAMED_GROUPS
+        ))
+        .expect("no NUL in the message");
+        PyErr::warn(py, category.as_any(), &message, 2)?;
+    }
+    Ok(())
 }
 
 #[pymethods]
@@ -199,9 +230,10 @@ impl Interpolant {
                 .transpose()?,
             points,
         };
-        let spline = py
+        let (spline, merged) = py
             .detach(|| build(data, method, split))
             .map_err(value_error)?;
+        warn_merged(py, &merged)?;
         Ok(Interpolant { spline })
     }
 

@@ -279,3 +279,12 @@ def test_derivatives_of_any_order(rng):
     for d in (3, 65, 2**40):
         assert f(*inside, dx=d) == 0.0
         assert f(*inside, dx=1, dy=d) == 0.0
+
+
+def test_nearly_coincident_points_are_merged_with_a_warning(rng):
+    pts = rng.random((30, 2))
+    pts = np.r_[pts, pts[[4]] + 1e-15]
+    z = np.r_[rng.random(30), 5.0]
+    with pytest.warns(UserWarning, match="points 4, 30 are nearly coincident"):
+        f = pssurf.PsInterpolator(pts, z)
+    assert f(*pts[4]) == pytest.approx((z[4] + 5.0) / 2, abs=1e-9)
