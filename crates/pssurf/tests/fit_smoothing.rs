@@ -230,26 +230,20 @@ fn repeated_measurements_are_averaged() {
         .map(|&p| f(p) + 0.1)
         .chain(pts.iter().map(|&p| f(p) - 0.1))
         .collect();
+    let once: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
     for m in [30, 1000] {
-        let fit = smooth_scattered(
-            &twice,
-            &z,
-            m,
-            Energy::HessianJumps,
-            Smoothing::Fixed(2e-9),
-            &mut |_| {},
-        )
-        .unwrap_or_else(|e| panic!("m = {m}: {e}"));
-        let once: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
-        let mean = smooth_scattered(
-            &pts,
-            &once,
-            m,
-            Energy::HessianJumps,
-            Smoothing::Fixed(1e-9),
-            &mut |_| {},
-        )
-        .unwrap();
+        let fit = |p: &[Point2<f64>], z: &[f64], lambda: f64| {
+            smooth_scattered(
+                p,
+                z,
+                m,
+                Energy::HessianJumps,
+                Smoothing::Fixed(lambda),
+                &mut |_| {},
+            )
+            .unwrap_or_else(|e| panic!("m = {m}: {e}"))
+        };
+        let (fit, mean) = (fit(&twice, &z, 2e-9), fit(&pts, &once, 1e-9));
         for &p in &pts {
             let (a, b) = (fit.spline.eval(p).unwrap(), mean.spline.eval(p).unwrap());
             assert!((a - b).abs() < 1e-9, "m = {m}, {p}: {a} vs {b}");

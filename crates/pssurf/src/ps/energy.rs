@@ -338,10 +338,7 @@ enum ThinPieces {
 /// values force there grow like ratio⁻⁴, and the weight keeps them of the size of the
 /// others'.
 fn shape_weight(t: &crate::geometry::Triangle2) -> f64 {
-    let longest2 = (0..3)
-        .map(|k| (t.v[(k + 1) % 3] - t.v[k]).norm_squared())
-        .fold(0.0, f64::max);
-    let ratio = 2.0 * t.area().abs() / longest2;
+    let ratio = t.min_height() / t.diameter();
     (ratio / THIN).min(1.0).powi(4)
 }
 

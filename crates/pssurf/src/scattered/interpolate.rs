@@ -157,10 +157,7 @@ pub fn data_basis(tri: Triangulation, split: SplitRule) -> Result<PsBasis, FitEr
                 .into_iter()
                 .map(|t| {
                     let g = tri.triangle_geometry(t);
-                    let length = (0..3)
-                        .map(|k| (g.v[(k + 1) % 3] - g.v[k]).norm())
-                        .fold(0.0, f64::max);
-                    (g.min_height(), length, t)
+                    (g.min_height(), g.diameter(), t)
                 })
                 .min_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)));
             match thinnest {
