@@ -584,3 +584,28 @@ fn formula_errors_are_in_our_own_words() {
     assert!(e.contains("`foo` is not a function"), "{e}");
     assert!(!e.contains("wlog"), "{e}");
 }
+
+#[test]
+fn given_gradients_too_large_for_the_control_values_are_named_by_their_row() {
+    // Audit: the message named an internal (space-filling-curve ordered) vertex.
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("g.csv");
+    std::fs::write(
+        &p,
+        "x,y,z,zx,zy\n0,0,0,0,0\n1,0,0,0,0\n0,1,0,1e300,0\n1,1,0,0,0\n0.4,0.6,0,0,0\n",
+    )
+    .unwrap();
+    let out = d.path().join("o.json");
+    let e = one_error(&pssurf(&["fit", &s(&p), "-o", &s(&out)]));
+    assert!(e.contains("row 3: its value and gradient"), "{e}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_surface_file_that_is_not_utf8_is_a_format_error() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("b.json");
+    std::fs::write(&p, b"{\"format\": \"pssurf\xff\"}").unwrap();
+    let e = one_error(&pssurf(&["info", &s(&p)]));
+    assert!(e.contains("is not UTF-8 text"), "{e}");
+}

@@ -92,15 +92,21 @@ struct Data {
     triangles: Option<Vec<[usize; 3]>>,
 }
 
+/// A built interpolant and what the caller should be warned about.
+struct Built {
+    spline: PsSpline<f64>,
+    /// Groups of nearly coincident points merged into one vertex (indices of the points
+    /// given; only the Delaunay path merges).
+    merged: Vec<Vec<usize>>,
+    /// Boundary slivers left out of the Delaunay domain (indices of the points given).
+    peeled: Vec<[usize; 3]>,
+}
+
 /// Builds the spline: the library's [`interpolate`] when only values are given on the
 /// Delaunay triangulation with the incentre split; else triangulate (or take the given
-/// triangles), build the basis, and take or estimate the gradients.
-/// The spline, and the groups of nearly coincident points merged into one vertex (indices
-/// of the points given; only the Delaunay path merges).
-type Built = (PsSpline<f64>, Vec<Vec<usize>>);
-
+/// triangles), build the basis, and take or estimate the gradients. Errors name the
+/// caller's points, whatever order the vertices are in.
 fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, String> {
-    let err = |e: &dyn std::fmt::Display| e.to_string();
     if data.points.len() != data.values.len() {
         return Err(format!(
             "{} points but {} values",
@@ -110,8 +116,12 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
     }
     if data.gradients.is_none() && data.triangles.is_none() && split == SplitRule::Incenter {
         return interpolate(&data.points, &data.values, method)
-            .map(|i| (i.spline, i.merged))
-            .map_err(|e| err(&e));
+            .map(|i| Built {
+                spline: i.spline,
+                merged: i.merged,
+                peeled: i.peeled,
+            })
+            .map_err(|e| e.to_string());
     }
     if let Some(k) = data
         .values
@@ -133,7 +143,7 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
             return Err(format!("the gradient of point {k} is not finite"));
         }
     }
-    check_coordinates(&data.points).map_err(|e| err(&e))?;
+    check_coordinates(&data.points).map_err(|e| e.to_string())?;
     let Data {
         mut points,
         mut values,
@@ -142,8 +152,9 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
     } = data;
     // Vertex k of the triangulation is point order[k] (no reordering: None).
     let mut order: Option<Vec<u32>> = None;
+    let mut peeled = Vec::new();
     let tri = match triangles {
-        Some(t) => Triangulation::try_new(points, t).map_err(|e| err(&e))?,
+        Some(t) => Triangulation::try_new(points, t).map_err(|e| e.to_string())?,
         None => {
             if let Some((a, b)) = duplicate_points(&points) {
                 return Err(format!(
@@ -155,45 +166,74 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
             points = o.iter().map(|&i| points[i as usize]).collect();
             values = o.iter().map(|&i| values[i as usize]).collect();
             gradients = gradients.map(|g| o.iter().map(|&i| g[i as usize]).collect());
+            let point_of = |v: usize| o[v] as usize;
+            let (tri, sliver) = Triangulation::delaunay_with_peeled(points)
+                .map_err(|e| FitError::from(e).map_points(point_of).to_string())?;
+            peeled = sliver.iter().map(|t| t.map(point_of)).collect();
             order = Some(o);
-            Triangulation::delaunay(points).map_err(|e| err(&e))?
+            tri
         }
     };
     let point_of = |v: usize| order.as_ref().map_or(v, |o| o[v] as usize);
-    let basis = Arc::new(data_basis(tri, split).map_err(|e| err(&e.map_points(point_of)))?);
+    let named = |e: FitError| e.map_points(point_of).to_string();
+    let basis = Arc::new(data_basis(tri, split).map_err(named)?);
     let gradients = match gradients {
         Some(g) => g,
         None => {
             estimate_gradients_by(&basis, &values, method)
-                .map_err(|e| err(&e))?
+                .map_err(named)?
                 .0
         }
     };
-    let spline = hermite_spline(basis, &values, &gradients).map_err(|e| err(&e))?;
-    Ok((spline, Vec::new()))
+    let spline = hermite_spline(basis, &values, &gradients).map_err(named)?;
+    Ok(Built {
+        spline,
+        merged: Vec::new(),
+        peeled,
+    })
 }
 
-/// Merged groups named in warnings, at most.
-const NAMED_GROUPS: usize = 5;
+/// Warnings of one kind issued one by one, at most (then one for the rest).
+const NAMED_WARNINGS: usize = 5;
 
 /// A `UserWarning` for each merged group of nearly coincident points (as the CLI warns).
 fn warn_merged(py: Python<'_>, groups: &[Vec<usize>]) -> PyResult<()> {
-    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
-    for g in groups.iter().take(NAMED_GROUPS) {
+    let messages = groups.iter().map(|g| {
         let named: Vec<String> = g.iter().map(|k| k.to_string()).collect();
-        let message = format!(
+        format!(
             "points {} are nearly coincident: merged into one vertex at their mean, with their mean value",
             named.join(", ")
-        );
+        )
+    });
+    let more = |n: usize| format!("{n} more groups of nearly coincident points were merged");
+    warn_each(py, messages, groups.len(), more)
+}
+
+/// A `UserWarning` for each boundary sliver left out of the domain (as the CLI warns).
+fn warn_peeled(py: Python<'_>, peeled: &[[usize; 3]]) -> PyResult<()> {
+    let messages = peeled.iter().map(|[a, b, c]| {
+        format!(
+            "points {a}, {b} and {c} are nearly collinear on the boundary: the sliver between them (thinner than {:e} of its length) is left out of the domain",
+            pssurf::triangulation::PEEL_THICKNESS
+        )
+    });
+    let more = |n: usize| format!("{n} more boundary slivers left out");
+    warn_each(py, messages, peeled.len(), more)
+}
+
+/// Issues the first [`NAMED_WARNINGS`] of `count` messages as `UserWarning`s, and one
+/// `more(rest)` for the rest.
+fn warn_each(
+    py: Python<'_>,
+    messages: impl Iterator<Item = String>,
+    count: usize,
+    more: impl Fn(usize) -> String,
+) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    let rest = count.saturating_sub(NAMED_WARNINGS);
+    let tail = (rest > 0).then(|| more(rest));
+    for message in messages.take(NAMED_WARNINGS).chain(tail) {
         let message = std::ffi::CString::new(message).expect("no NUL in the message");
-        PyErr::warn(py, category.as_any(), &message, 2)?;
-    }
-    if groups.len() > NAMED_GROUPS {
-        let message = std::ffi::CString::new(format!(
-            "{} more groups of nearly coincident points were merged",
-            groups.len() - NAMED_GROUPS
-        ))
-        .expect("no NUL in the message");
         PyErr::warn(py, category.as_any(), &message, 2)?;
     }
     Ok(())
@@ -230,11 +270,14 @@ impl Interpolant {
                 .transpose()?,
             points,
         };
-        let (spline, merged) = py
+        let built = py
             .detach(|| build(data, method, split))
             .map_err(value_error)?;
-        warn_merged(py, &merged)?;
-        Ok(Interpolant { spline })
+        warn_merged(py, &built.merged)?;
+        warn_peeled(py, &built.peeled)?;
+        Ok(Interpolant {
+            spline: built.spline,
+        })
     }
 
     /// The values (or the partial derivative ∂^(dx+dy)/∂x^dx ∂y^dy) at the points (x[k], y[k]);

@@ -288,3 +288,23 @@ def test_nearly_coincident_points_are_merged_with_a_warning(rng):
     with pytest.warns(UserWarning, match="points 4, 30 are nearly coincident"):
         f = pssurf.PsInterpolator(pts, z)
     assert f(*pts[4]) == pytest.approx((z[4] + 5.0) / 2, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    "options", [{}, {"split": "centroid"}, {"gradients": np.c_[np.ones(5), np.zeros(5)]}]
+)
+def test_boundary_slivers_left_out_are_named_in_a_warning(options):
+    # Points 0, 1, 2 lie on a nearly straight boundary: the Delaunay sliver between them is
+    # left out of the domain, as the CLI warns, whatever the path taken.
+    pts = np.array([[0.0, 0.0], [1.0, 1e-12], [2.0, 0.0], [1.0, 1.0], [0.5, 0.6]])
+    with pytest.warns(UserWarning, match="points 1, 0 and 2 are nearly collinear on the boundary"):
+        f = pssurf.PsInterpolator(pts, pts[:, 0], **options)
+    assert len(f.triangles) == 3
+
+
+def test_gradients_too_large_are_named_by_the_callers_point():
+    pts = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0], [0.4, 0.6]])
+    g = np.zeros((5, 2))
+    g[2, 0] = 1e300
+    with pytest.raises(ValueError, match="gradient of point 2 give control values beyond"):
+        pssurf.PsInterpolator(pts, np.zeros(5), gradients=g)

@@ -41,6 +41,10 @@ def test_file_errors(tmp_path):
     bad.write_text('{"format": "pssurf", "version": 1, "kind": "functional"')
     with pytest.raises(ValueError, match="bad.json"):
         pssurf.load(bad)
+    binary = tmp_path / "binary.json"
+    binary.write_bytes(b'{"format": "pssurf\xff"}')
+    with pytest.raises(ValueError, match="not UTF-8 text"):
+        pssurf.load(binary)
     with pytest.raises(OSError):
         pssurf.ups(3, 2).save(tmp_path / "no" / "such" / "dir" / "s.json")
 

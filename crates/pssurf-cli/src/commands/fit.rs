@@ -8,9 +8,9 @@ use nalgebra::{Point2, Vector2};
 use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
-    FitError, GradientMethod, NEAR_DUPLICATE, Smoothing, data_basis, estimate_gradients_by,
-    hermite_spline, near_duplicate_distance, near_duplicate_groups, smooth_scattered,
-    smoothing_fit,
+    FitError, GradientError, GradientMethod, NEAR_DUPLICATE, Smoothing, data_basis,
+    estimate_gradients_by, hermite_spline, near_duplicate_distance, near_duplicate_groups,
+    smooth_scattered, smoothing_fit,
 };
 
 use crate::budget::{Estimate, base_memory, count, mul};
@@ -211,7 +211,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
     warn_slivers(&tri, &row_of);
     let basis = Arc::new(
         data_basis(tri, args.split.into())
-            .map_err(|e| basis_error(&args.data, e.map_points(|v| row_of[v])))?,
+            .map_err(|e| fit_error(&args.data, e.map_points(|v| row_of[v])))?,
     );
     let (gradients, method) = match gradient {
         Some((a, b)) => {
@@ -219,7 +219,8 @@ pub fn run(args: &FitArgs) -> Result<()> {
             (g, "given in the data (zx, zy)".to_string())
         }
         None => {
-            let (g, report) = estimate_gradients_by(&basis, &values, args.gradients.into())?;
+            let (g, report) = estimate_gradients_by(&basis, &values, args.gradients.into())
+                .map_err(|e| fit_error(&args.data, e.map_points(|v| row_of[v])))?;
             let mut m = match args.gradients {
                 Gradients::Local => "estimated by local weighted quadratic least squares",
                 Gradients::Global => "estimated by least Hessian-jump energy (global)",
@@ -245,12 +246,8 @@ pub fn run(args: &FitArgs) -> Result<()> {
             (g, m)
         }
     };
-    let spline = hermite_spline(basis.clone(), &values, &gradients).with_context(|| {
-        format!(
-            "{}: the interpolant does not fit in floating point (values or gradients too large?)",
-            args.data.display()
-        )
-    })?;
+    let spline = hermite_spline(basis.clone(), &values, &gradients)
+        .map_err(|e| fit_error(&args.data, e.map_points(|v| row_of[v])))?;
     let t = basis.triangulation();
     crate::output::save_surface(&Surface::from(spline), &args.output)?;
     eprintln!(
@@ -499,11 +496,11 @@ fn user_coarse_basis(path: &Path, triangles: Option<&Path>) -> Result<PsBasis> {
         None => Triangulation::delaunay(vertices)
             .with_context(|| format!("{}: cannot triangulate", path.display()))?,
     };
-    data_basis(tri, SplitRule::Incenter).map_err(|e| basis_error(path, e))
+    data_basis(tri, SplitRule::Incenter).map_err(|e| fit_error(path, e))
 }
 
-/// A failure of the PS basis on the data of `path`, its point indices being 0-based rows.
-fn basis_error(path: &Path, e: FitError) -> anyhow::Error {
+/// A failure of the fit on the data of `path`, its point indices being 0-based rows.
+fn fit_error(path: &Path, e: FitError) -> anyhow::Error {
     match e {
         FitError::BeyondPrecision {
             vertices,
@@ -521,6 +518,16 @@ fn basis_error(path: &Path, e: FitError) -> anyhow::Error {
                 path.display()
             )
         }
+        FitError::ControlValueOutOfRange { point } => anyhow::anyhow!(
+            "{}: row {}: its value and gradient give control values beyond ±1e60 (the gradient times the distance to its neighbours is too large): scale z or the gradients down",
+            path.display(),
+            point + 1
+        ),
+        FitError::Gradient(GradientError { vertex }) => anyhow::anyhow!(
+            "{}: cannot estimate the gradient at row {}: its neighbours do not span the plane",
+            path.display(),
+            vertex + 1
+        ),
         e => anyhow::anyhow!("{}: {e}", path.display()),
     }
 }

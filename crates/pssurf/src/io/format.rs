@@ -46,6 +46,9 @@ pub enum FormatError {
     /// A version this build cannot read.
     #[error("format version {0} is not supported (this build reads version {FORMAT_VERSION})")]
     UnsupportedVersion(u64),
+    /// The file is neither UTF-8 text nor a binary surface file.
+    #[error("is not UTF-8 text (pssurf files are JSON text, or binary .psb surfaces)")]
+    NotText,
     /// The contents are well-formed but invalid.
     #[error("{at}: {message}")]
     Invalid {
@@ -1036,11 +1039,9 @@ fn text_limited(
             format!("longer than the {max_bytes} bytes allowed"),
         )));
     }
-    String::from_utf8(bytes).map_err(|_| {
-        io(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            "is not UTF-8 text (a pssurf file is JSON)",
-        ))
+    String::from_utf8(bytes).map_err(|_| FileError::Format {
+        path: path.to_path_buf(),
+        cause: FormatError::NotText,
     })
 }
 

@@ -82,6 +82,15 @@ pub enum FitError {
         /// Its longest side.
         length: f64,
     },
+    /// The value and gradient at a point give control values (2.45) beyond ±1e60: the
+    /// gradient is too large for the distance to the corners of the point's PS-triangle.
+    #[error(
+        "the value and gradient of point {point} give control values beyond ±1e60 (the gradient times the distance to its neighbours is too large): scale the values or gradients down"
+    )]
+    ControlValueOutOfRange {
+        /// The point (its index among the points given).
+        point: usize,
+    },
 }
 
 impl FitError {
@@ -108,6 +117,15 @@ impl FitError {
                 length,
             },
             FitError::NonFiniteValue(k) => FitError::NonFiniteValue(index(k)),
+            FitError::ControlValueOutOfRange { point } => FitError::ControlValueOutOfRange {
+                point: index(point),
+            },
+            FitError::Gradient(GradientError { vertex })
+            | FitError::GlobalGradient(GlobalGradientError::Local(GradientError { vertex })) => {
+                FitError::Gradient(GradientError {
+                    vertex: index(vertex),
+                })
+            }
             FitError::Triangulation(TriangulationError::NearlyCollinearPoints { points }) => {
                 FitError::Triangulation(TriangulationError::NearlyCollinearPoints {
                     points: points.map(&index),
@@ -234,12 +252,14 @@ pub fn estimate_gradients_by(
     Ok((gradients, report))
 }
 
-/// The Hermite PS-spline on `basis` with these vertex values and gradients.
+/// The Hermite PS-spline on `basis` with these vertex values and gradients; control values
+/// beyond ±1e60 are [`FitError::ControlValueOutOfRange`], naming the vertex (map it to the
+/// caller's point with [`FitError::map_points`]).
 pub fn hermite_spline(
     basis: Arc<PsBasis>,
     values: &[f64],
     gradients: &[Vector2<f64>],
-) -> Result<PsSpline<f64>, PsError> {
+) -> Result<PsSpline<f64>, FitError> {
     let data: Vec<Hermite<f64>> = values
         .iter()
         .zip(gradients)
@@ -249,7 +269,12 @@ pub fn hermite_spline(
             dy: g.y,
         })
         .collect();
-    PsSpline::hermite(basis, &data)
+    PsSpline::hermite(basis, &data).map_err(|e| match e {
+        PsError::NonFiniteCoefficient { vertex, .. } => {
+            FitError::ControlValueOutOfRange { point: vertex }
+        }
+        e => e.into(),
+    })
 }
 
 /// An interpolant of scattered data and how it was made.
@@ -263,6 +288,9 @@ pub struct Interpolant {
     /// The groups of data points (indices, sorted) that were nearly coincident and were
     /// merged into one vertex at their mean with their mean value ([`NEAR_DUPLICATE`]).
     pub merged: Vec<Vec<usize>>,
+    /// The boundary slivers thinner than [`PEEL_THICKNESS`](crate::triangulation::PEEL_THICKNESS)
+    /// that were left out of the domain (indices of the data points at their corners).
+    pub peeled: Vec<[usize; 3]>,
     /// How the gradients were estimated.
     pub gradients: GradientReport,
 }
@@ -300,16 +328,20 @@ pub fn interpolate(
     let ordered: Vec<Point2<f64>> = order.iter().map(|&k| data.points[k]).collect();
     let z: Vec<f64> = order.iter().map(|&k| data.values[k]).collect();
     let data_index: Vec<usize> = order.iter().map(|&k| data.first_index[k]).collect();
-    let tri = Triangulation::delaunay(ordered)
+    let (tri, peeled) = Triangulation::delaunay_with_peeled(ordered)
         .map_err(|e| FitError::from(e).map_points(|v| data_index[v]))?;
     let basis = Arc::new(
         data_basis(tri, SplitRule::Incenter).map_err(|e| e.map_points(|v| data_index[v]))?,
     );
-    let (g, gradients) = estimate_gradients_by(&basis, &z, method)?;
+    let named = |e: FitError| e.map_points(|v| data_index[v]);
+    let (g, gradients) = estimate_gradients_by(&basis, &z, method).map_err(named)?;
+    let spline = hermite_spline(basis, &z, &g).map_err(named)?;
+    let peeled = peeled.iter().map(|t| t.map(|v| data_index[v])).collect();
     Ok(Interpolant {
-        spline: hermite_spline(basis, &z, &g)?,
+        spline,
         data_index,
         merged: data.merged,
+        peeled,
         gradients,
     })
 }
