@@ -7,7 +7,8 @@ use nalgebra::{Point2, Vector2};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pssurf::prelude::*;
 use pssurf::scattered::{
-    FitError, GradientMethod, data_basis, estimate_gradients_by, hermite_spline, interpolate,
+    FitError, GradientMethod, data_basis_with, estimate_gradients_by, hermite_data,
+    interpolate_with, spline_of,
 };
 use pssurf::triangulation::{MAX_COORDINATE, check_coordinates, duplicate_points, morton_order};
 use pyo3::prelude::*;
@@ -22,7 +23,13 @@ use crate::evaluate::{
 /// of the data points (the engine of `pssurf.PsInterpolator`).
 #[pyclass(module = "pssurf._core", frozen)]
 pub struct Interpolant {
+    /// The spline; its PS-triangles are Dierckx's optimal ones unless `hermite` is kept.
     spline: PsSpline<f64>,
+    /// The Hermite data of a spline built on [`PsTriangleChoice::Circumscribed`] triangles
+    /// (its function does not depend on them, and they cost a tenth as much): its B-spline
+    /// form on the optimal ones is built from this data when asked for, exactly as
+    /// `pssurf fit` builds it.
+    hermite: Option<Vec<Hermite<f64>>>,
 }
 
 impl Interpolant {
@@ -49,7 +56,10 @@ impl Interpolant {
 
     /// Wraps a spline made elsewhere (a smoothing fit).
     pub fn from_spline(spline: PsSpline<f64>) -> Self {
-        Interpolant { spline }
+        Interpolant {
+            spline,
+            hermite: None,
+        }
     }
 }
 
@@ -92,9 +102,24 @@ struct Data {
     triangles: Option<Vec<[usize; 3]>>,
 }
 
+/// The PS-triangles of interpolants whose gradients are given or estimated locally (see
+/// the `hermite` field of [`Interpolant`]). The global estimate's system is assembled on
+/// the PS-triangles, so its rounding depends on them: it keeps the optimal ones, and with
+/// them the CLI's result to the last bit.
+fn ps_triangles_for(method: GradientMethod, given: bool) -> PsTriangleChoice {
+    match method {
+        GradientMethod::Global if !given => PsTriangleChoice::Optimal,
+        _ => PsTriangleChoice::Circumscribed,
+    }
+}
+
 /// A built interpolant and what the caller should be warned about.
 struct Built {
     spline: PsSpline<f64>,
+    /// The spline's Hermite data.
+    hermite: Vec<Hermite<f64>>,
+    /// Whether its PS-triangles are the optimal ones.
+    optimal: bool,
     /// Groups of nearly coincident points merged into one vertex (indices of the points
     /// given; only the Delaunay path merges).
     merged: Vec<Vec<usize>>,
@@ -102,7 +127,7 @@ struct Built {
     peeled: Vec<[usize; 3]>,
 }
 
-/// Builds the spline: the library's [`interpolate`] when only values are given on the
+/// Builds the spline: the library's [`interpolate_with`] when only values are given on the
 /// Delaunay triangulation with the incentre split; else triangulate (or take the given
 /// triangles), build the basis, and take or estimate the gradients. Errors name the
 /// caller's points, whatever order the vertices are in.
@@ -115,8 +140,11 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
         ));
     }
     if data.gradients.is_none() && data.triangles.is_none() && split == SplitRule::Incenter {
-        return interpolate(&data.points, &data.values, method)
+        let choice = ps_triangles_for(method, false);
+        return interpolate_with(&data.points, &data.values, method, &choice)
             .map(|i| Built {
+                optimal: choice == PsTriangleChoice::Optimal,
+                hermite: i.hermite,
                 spline: i.spline,
                 merged: i.merged,
                 peeled: i.peeled,
@@ -176,7 +204,8 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
     };
     let point_of = |v: usize| order.as_ref().map_or(v, |o| o[v] as usize);
     let named = |e: FitError| e.map_points(point_of).to_string();
-    let basis = Arc::new(data_basis(tri, split).map_err(named)?);
+    let choice = ps_triangles_for(method, gradients.is_some());
+    let basis = Arc::new(data_basis_with(tri, split, &choice).map_err(named)?);
     let gradients = match gradients {
         Some(g) => g,
         None => {
@@ -185,8 +214,11 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
                 .0
         }
     };
-    let spline = hermite_spline(basis, &values, &gradients).map_err(named)?;
+    let hermite = hermite_data(&values, &gradients);
+    let spline = spline_of(basis, &hermite, &choice).map_err(named)?;
     Ok(Built {
+        optimal: choice == PsTriangleChoice::Optimal,
+        hermite,
         spline,
         merged: Vec::new(),
         peeled,
@@ -239,6 +271,19 @@ fn warn_each(
     Ok(())
 }
 
+/// The spline with the Hermite data `data` on the refinement of `spline` and optimal
+/// PS-triangles.
+fn optimal_spline(spline: &PsSpline<f64>, data: &[Hermite<f64>]) -> Result<PsSpline<f64>, String> {
+    let basis = spline.basis();
+    let optimal = PsBasis::with_refinement(
+        basis.triangulation().clone(),
+        basis.refinement().clone(),
+        &PsTriangleChoice::Optimal,
+    )
+    .map_err(|e| e.to_string())?;
+    spline_of(Arc::new(optimal), data, &PsTriangleChoice::Optimal).map_err(|e| e.to_string())
+}
+
 #[pymethods]
 impl Interpolant {
     /// Fits the interpolant; see `pssurf.PsInterpolator`.
@@ -277,6 +322,7 @@ impl Interpolant {
         warn_peeled(py, &built.peeled)?;
         Ok(Interpolant {
             spline: built.spline,
+            hermite: (!built.optimal).then_some(built.hermite),
         })
     }
 
@@ -367,8 +413,16 @@ impl Interpolant {
     }
 
     /// The interpolant as a functional PS surface (for `save`, `sample`, `fairness`).
-    fn surface(&self) -> crate::surface::PySurface {
-        crate::surface::PySurface::new(pssurf::surface::Surface::from(self.spline.clone()))
+    fn surface(&self, py: Python<'_>) -> PyResult<crate::surface::PySurface> {
+        let spline = match &self.hermite {
+            None => self.spline.clone(),
+            Some(data) => py
+                .detach(|| optimal_spline(&self.spline, data))
+                .map_err(value_error)?,
+        };
+        Ok(crate::surface::PySurface::new(
+            pssurf::surface::Surface::from(spline),
+        ))
     }
 
     /// The number of triangles.

@@ -13,7 +13,12 @@ def test_save_and_load_round_trip(rng, tmp_path):
     f.save(path)
     s = pssurf.load(path)
     q = 0.2 + 0.6 * rng.random((500, 2))
-    assert np.array_equal(s.evaluate(q)[:, 2], f(q))
+    # The file is the interpolant's B-spline form, bit for bit ...
+    assert np.array_equal(s.evaluate(q), f.surface().evaluate(q))
+    # ... and the same function: the interpolant's Bézier nets come straight from its Hermite
+    # data, the file's from its control values, so they differ by rounding only (measured
+    # 3.3e-16 at most over 15 random sets of 30 to 3000 points with values in [-1, 1]).
+    assert np.abs(s.evaluate(q)[:, 2] - f(q)).max() <= 2e-15
     u = pssurf.ups(6, 3, height="x*y", kind="parametric")
     u.save(tmp_path / "u.json")
     back = pssurf.load(tmp_path / "u.json")

@@ -10,7 +10,7 @@ use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
     GradientMethod, Smoothing, estimate_gradients, estimate_gradients_global, interpolate,
-    smooth_scattered,
+    interpolate_with, smooth_scattered,
 };
 use std::hint::black_box;
 
@@ -22,6 +22,20 @@ fn fit_eval(c: &mut Criterion) {
     g.sample_size(20);
     g.throughput(Throughput::Elements(grid.len() as u64));
     g.bench_function("fit", |b| b.iter(|| black_box(fit(&pts, &z))));
+    // As the Python interpolant: circumscribed PS-triangles, nets from the Hermite data.
+    g.bench_function("fit for evaluation", |b| {
+        b.iter(|| {
+            black_box(
+                interpolate_with(
+                    &pts,
+                    &z,
+                    GradientMethod::Local,
+                    &PsTriangleChoice::Circumscribed,
+                )
+                .unwrap(),
+            )
+        })
+    });
     let s = fit(&pts, &z);
     g.bench_function("evaluate values", |b| {
         b.iter(|| black_box(s.map_points(&grid, |ev, p| ev.value(p))))

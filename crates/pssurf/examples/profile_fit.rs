@@ -1,5 +1,6 @@
 //! Times `interpolate` (the scattered-data fit) on N random points, repeated R times, for
-//! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200 [--global]`.
+//! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200 [--global]
+//! [--circumscribed]` (the last: PS-triangles for evaluation, as the Python interpolant).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -7,8 +8,8 @@ use std::time::Instant;
 use nalgebra::Point2;
 use pssurf::prelude::*;
 use pssurf::scattered::{
-    GradientMethod, NEAR_DUPLICATE, data_basis, estimate_gradients_by, hermite_spline, interpolate,
-    merge_near_duplicates,
+    GradientMethod, NEAR_DUPLICATE, data_basis_with, estimate_gradients_by, hermite_spline,
+    interpolate_with, merge_near_duplicates,
 };
 
 #[path = "../benches/common.rs"]
@@ -21,21 +22,32 @@ fn main() {
     } else {
         GradientMethod::Local
     };
+    let choice = if std::env::args().any(|a| a == "--circumscribed") {
+        PsTriangleChoice::Circumscribed
+    } else {
+        PsTriangleChoice::Optimal
+    };
     let pts = common::random_points(n, 1);
     let z = common::franke_values(&pts);
     let mut best = f64::INFINITY;
     for _ in 0..repeats {
         let t = Instant::now();
-        let f = interpolate(&pts, &z, method).expect("the fit succeeds");
+        let f = interpolate_with(&pts, &z, method, &choice).expect("the fit succeeds");
         best = best.min(t.elapsed().as_secs_f64());
         std::hint::black_box(f);
     }
     println!("{n} points: best of {repeats} fits {:.2} ms", best * 1e3);
-    phases(&pts, &z, repeats, method);
+    phases(&pts, &z, repeats, method, &choice);
 }
 
 /// The best time of each phase of `interpolate`, run one after the other as it does.
-fn phases(pts: &[Point2<f64>], z: &[f64], repeats: usize, method: GradientMethod) {
+fn phases(
+    pts: &[Point2<f64>],
+    z: &[f64],
+    repeats: usize,
+    method: GradientMethod,
+    choice: &PsTriangleChoice,
+) {
     let mut best = [f64::INFINITY; 6];
     let names = [
         "checks",
@@ -58,7 +70,7 @@ fn phases(pts: &[Point2<f64>], z: &[f64], repeats: usize, method: GradientMethod
         lap.mark(&mut best[2]);
         let tri = Triangulation::delaunay(ordered).unwrap();
         lap.mark(&mut best[3]);
-        let basis = Arc::new(data_basis(tri, SplitRule::Incenter).unwrap());
+        let basis = Arc::new(data_basis_with(tri, SplitRule::Incenter, choice).unwrap());
         lap.mark(&mut best[4]);
         let (g, _) = estimate_gradients_by(&basis, &zz, method).unwrap();
         std::hint::black_box(hermite_spline(basis, &zz, &g).unwrap());

@@ -6,7 +6,7 @@ use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
     FitError, GradientMethod, PRECISION_HINT, Smoothing, SmoothingError, interpolate,
-    smooth_scattered,
+    interpolate_with, smooth_scattered,
 };
 use pssurf::triangulation::TriangulationError;
 use rand::{RngExt, SeedableRng};
@@ -554,4 +554,55 @@ fn nearly_collinear_points_are_named_as_such() {
         interpolate(&pts, &z, GradientMethod::Local),
         Err(FitError::NonFiniteValue(7))
     ));
+}
+
+/// The interpolant made to be evaluated (circumscribed PS-triangles, nets from the Hermite
+/// data, as the Python package builds it) exists whenever `pssurf fit`'s does, on every
+/// adversarial and sliver set, interpolates the same Hermite data (bit for bit, with the
+/// local estimator) and is the same function to rounding.
+#[test]
+fn interpolants_for_evaluation_equal_the_fitted_ones_on_near_degenerate_sets() {
+    let mut compared = 0;
+    for (name, pts) in adversarial_sets().into_iter().chain(sliver_sets()) {
+        let z: Vec<f64> = pts.iter().map(|q| (3.0 * q.x).sin() * q.y).collect();
+        let Ok(fitted) = interpolate(&pts, &z, GradientMethod::Local) else {
+            continue;
+        };
+        let fast = interpolate_with(
+            &pts,
+            &z,
+            GradientMethod::Local,
+            &PsTriangleChoice::Circumscribed,
+        )
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(fast.hermite, fitted.hermite, "{name}");
+        let t = fitted.spline.basis().triangulation();
+        // The forward-error scale: both nets combine values with gradients times offsets
+        // between points whose coordinates of magnitude M are rounded to ε M.
+        let z_max = z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let g_max = fitted
+            .hermite
+            .iter()
+            .fold(0.0f64, |m, h| m.max(h.dx.abs()).max(h.dy.abs()));
+        let magnitude = pts
+            .iter()
+            .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+        let tol = 64.0 * f64::EPSILON * (z_max + g_max * magnitude);
+        for tr in 0..t.triangle_count() {
+            let g = t.triangle_geometry(tr);
+            for b in [[1.0 / 3.0; 3], [0.7, 0.2, 0.1], [0.1, 0.1, 0.8]] {
+                let p = g.point(b);
+                let (a, w) = (fast.spline.eval(p), fitted.spline.eval(p));
+                let (Ok(a), Ok(w)) = (a, w) else {
+                    panic!("{name}: triangle {tr} at {p}");
+                };
+                assert!(
+                    (a - w).abs() <= tol,
+                    "{name}: {a} vs {w}, tolerance {tol:e}"
+                );
+            }
+        }
+        compared += 1;
+    }
+    assert_eq!(compared, 29, "every set fitted both ways");
 }

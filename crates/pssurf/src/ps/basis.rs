@@ -235,6 +235,39 @@ impl PsBasis {
         }
     }
 
+    /// The Bézier net of triangle `t` of the Hermite interpolant (2.30) with data `data(i)`
+    /// at vertex i, straight from the data: the ordinates next to V_i lie on its tangent
+    /// plane, f_i + ∇f_i · (P − V_i) at the domain points P = V_i and the midpoints of V_i R
+    /// and V_i Z — what [`net`](Self::net) gives from the coefficients (2.45) on any
+    /// PS-triangle, without them and their rounding.
+    pub fn hermite_net<V: Vector>(
+        &self,
+        t: usize,
+        data: impl Fn(usize) -> super::Hermite<V>,
+    ) -> [V; NET_LEN] {
+        let v = self.tri.triangle(t);
+        let z = self.refinement.z(t);
+        let corners = std::array::from_fn(|c| {
+            let vi = self.tri.vertex(v[c]);
+            let h = data(v[c]);
+            let on_plane = |p: Point2<f64>| {
+                let half = 0.5 * (p - vi);
+                h.value + h.dx * half.x + h.dy * half.y
+            };
+            [
+                h.value,
+                on_plane(self.refinement.edge_point(&self.tri, t, c)),
+                on_plane(self.refinement.edge_point(&self.tri, t, (c + 2) % 3)),
+                on_plane(z),
+            ]
+        });
+        net::complete_net(
+            corners,
+            self.refinement.lambda(t),
+            self.refinement.z_bary(t),
+        )
+    }
+
     /// The Bézier net of triangle `t` for per-vertex control values.
     pub fn net<T: net::Combine>(&self, t: usize, ctrl: &[[T; 3]]) -> [T; NET_LEN] {
         self.net_with(t, |i| ctrl[i])

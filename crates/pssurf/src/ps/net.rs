@@ -143,22 +143,9 @@ pub struct NetStencil {
 impl NetStencil {
     /// The 19 ordinates from the control values `ctrl[c]` of the three corners' vertices.
     pub fn apply<T: Combine>(&self, ctrl: [[T; 3]; 3]) -> [T; NET_LEN] {
-        let mut n = [ctrl[0][0]; NET_LEN];
-        for c in 0..3 {
-            let rows = &self.rows[c];
-            n[s(c)] = T::combine3(rows[0], ctrl[c]);
-            n[u(c)] = T::combine3(rows[1], ctrl[c]);
-            n[v(c)] = T::combine3(rows[2], ctrl[c]);
-            n[w(c)] = T::combine3(rows[3], ctrl[c]);
-        }
-        for c in 0..3 {
-            let d = (c + 1) % 3;
-            let l = self.lambda[c];
-            n[r(c)] = T::combine2([l, 1.0 - l], [n[u(c)], n[v(d)]]);
-            n[th(c)] = T::combine2([l, 1.0 - l], [n[w(c)], n[w(d)]]);
-        }
-        n[OM] = T::combine3(self.z, [n[w(0)], n[w(1)], n[w(2)]]);
-        n
+        let rows = &self.rows;
+        let corners = std::array::from_fn(|c| rows[c].map(|weights| T::combine3(weights, ctrl[c])));
+        complete_net(corners, self.lambda, self.z)
     }
 
     /// The transpose of [`apply`](Self::apply): the coefficients `k[c][j]` of the control
@@ -189,4 +176,30 @@ impl NetStencil {
         }
         out
     }
+}
+
+/// The whole net from the four ordinates at each corner c (at V_c and the midpoints of
+/// V_c R_c, V_c R_{c−1} and V_c Z, in the order of [`NetStencil::rows`]), λ of the edges and
+/// Z's barycentric coordinates: the ordinates at the edge points and around Z follow from
+/// C¹ continuity ((2.54)–(2.60)).
+pub fn complete_net<T: Combine>(
+    corners: [[T; 4]; 3],
+    lambda: [f64; 3],
+    z: [f64; 3],
+) -> [T; NET_LEN] {
+    let mut n = [corners[0][0]; NET_LEN];
+    for (c, [at_s, at_u, at_v, at_w]) in corners.into_iter().enumerate() {
+        n[s(c)] = at_s;
+        n[u(c)] = at_u;
+        n[v(c)] = at_v;
+        n[w(c)] = at_w;
+    }
+    for c in 0..3 {
+        let d = (c + 1) % 3;
+        let l = lambda[c];
+        n[r(c)] = T::combine2([l, 1.0 - l], [n[u(c)], n[v(d)]]);
+        n[th(c)] = T::combine2([l, 1.0 - l], [n[w(c)], n[w(d)]]);
+    }
+    n[OM] = T::combine3(z, [n[w(0)], n[w(1)], n[w(2)]]);
+    n
 }

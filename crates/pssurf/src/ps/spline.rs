@@ -50,22 +50,7 @@ impl<V: Vector> PsSpline<V> {
     /// The spline with the given control values (one triple per vertex), validated: the count
     /// must match and every value must be finite.
     pub fn new(basis: Arc<PsBasis>, coeffs: Vec<[V; 3]>) -> Result<Self, PsError> {
-        let n = basis.triangulation().vertex_count();
-        if coeffs.len() != n {
-            return Err(PsError::WrongCount {
-                what: "control value triples",
-                expected: n,
-                found: coeffs.len(),
-            });
-        }
-        for (i, c) in coeffs.iter().enumerate() {
-            if let Some(j) = c.iter().position(|v| !v.in_range()) {
-                return Err(PsError::NonFiniteCoefficient {
-                    vertex: i,
-                    index: j,
-                });
-            }
-        }
+        check_coefficients(&basis, &coeffs)?;
         let nets = build_nets(&basis, &coeffs);
         Ok(PsSpline {
             basis,
@@ -77,20 +62,30 @@ impl<V: Vector> PsSpline<V> {
     /// The Hermite interpolant (2.30): the unique spline with the given value and gradient at
     /// every vertex (coefficients by (2.45), see [`PsBasis::hermite_coefficients`]).
     pub fn hermite(basis: Arc<PsBasis>, data: &[Hermite<V>]) -> Result<Self, PsError> {
-        let n = basis.triangulation().vertex_count();
-        if data.len() != n {
-            return Err(PsError::WrongCount {
-                what: "Hermite data",
-                expected: n,
-                found: data.len(),
-            });
-        }
-        let coeffs = data
-            .iter()
-            .enumerate()
-            .map(|(i, h)| basis.hermite_coefficients(i, h.value, h.dx, h.dy))
-            .collect();
+        let coeffs = hermite_coefficients(&basis, data)?;
         Self::new(basis, coeffs)
+    }
+
+    /// [`hermite`](Self::hermite) with the Bézier nets computed from the data directly
+    /// ([`PsBasis::hermite_net`]) instead of from the control values: the same function to
+    /// the last bit whatever the PS-triangles (e.g. cheap
+    /// [`Circumscribed`](super::PsTriangleChoice::Circumscribed) ones for a spline made to
+    /// be evaluated). Its nets differ by rounding from those of `hermite`, which are what a
+    /// saved and loaded file has.
+    pub fn hermite_direct(basis: Arc<PsBasis>, data: &[Hermite<V>]) -> Result<Self, PsError> {
+        let coeffs = hermite_coefficients(&basis, data)?;
+        // Coefficients within range make the data finite (the map (2.45) is invertible).
+        check_coefficients(&basis, &coeffs)?;
+        let nets = (0..basis.triangulation().triangle_count())
+            .into_par_iter()
+            .with_min_len(1024)
+            .map(|t| basis.hermite_net(t, |i| data[i]))
+            .collect();
+        Ok(PsSpline {
+            basis,
+            coeffs,
+            nets,
+        })
     }
 
     /// The Hermite interpolant of a function given with its gradient, `f(p) = (f, f_x, f_y)`.
@@ -341,6 +336,47 @@ pub(crate) fn rebuild_nets<T: Send>(
             nets[t] = net(t);
         }
     }
+}
+
+/// The control values (2.45) of Hermite data on `basis`, one datum per vertex.
+fn hermite_coefficients<V: Vector>(
+    basis: &PsBasis,
+    data: &[Hermite<V>],
+) -> Result<Vec<[V; 3]>, PsError> {
+    let n = basis.triangulation().vertex_count();
+    if data.len() != n {
+        return Err(PsError::WrongCount {
+            what: "Hermite data",
+            expected: n,
+            found: data.len(),
+        });
+    }
+    Ok(data
+        .iter()
+        .enumerate()
+        .map(|(i, h)| basis.hermite_coefficients(i, h.value, h.dx, h.dy))
+        .collect())
+}
+
+/// One triple of control values per vertex of `basis`, every value finite and in range.
+fn check_coefficients<V: Vector>(basis: &PsBasis, coeffs: &[[V; 3]]) -> Result<(), PsError> {
+    let n = basis.triangulation().vertex_count();
+    if coeffs.len() != n {
+        return Err(PsError::WrongCount {
+            what: "control value triples",
+            expected: n,
+            found: coeffs.len(),
+        });
+    }
+    for (i, c) in coeffs.iter().enumerate() {
+        if let Some(j) = c.iter().position(|v| !v.in_range()) {
+            return Err(PsError::NonFiniteCoefficient {
+                vertex: i,
+                index: j,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The Bézier nets of all triangles for per-vertex control values (in parallel).

@@ -244,6 +244,57 @@ fn linear_and_quadratic_functions_are_reproduced_exactly() {
     }
 }
 
+/// Nets straight from Hermite data ([`PsSpline::hermite_direct`]) do not depend on the
+/// PS-triangles: on circumscribed and optimal ones they are equal to the last bit. They
+/// reproduce quadratics (against the closed form) and agree with the nets from the control
+/// values to rounding. Circumscribed triangles are valid PS-triangles.
+#[test]
+fn hermite_nets_from_the_data_do_not_depend_on_the_ps_triangles() {
+    let mut r = rng(47);
+    for seed in 0..3 {
+        for (name, optimal) in bases(seed) {
+            let t = optimal.triangulation();
+            let circumscribed = Arc::new(
+                PsBasis::with_refinement(
+                    t.clone(),
+                    optimal.refinement().clone(),
+                    &PsTriangleChoice::Circumscribed,
+                )
+                .expect(name),
+            );
+            for i in 0..t.vertex_count() {
+                let q = circumscribed.ps_triangle(i);
+                for p in ps_triangles::ps_points(t, optimal.refinement(), i) {
+                    assert!(q.contains_exact(p), "{name}: vertex {i}");
+                }
+            }
+            let h = scale(t);
+            let f = Quadratic::random(&mut r);
+            let quadratic: Vec<Hermite<f64>> = t.vertices().iter().map(|&p| f.hermite(p)).collect();
+            let data = random_hermite(&mut r, t.vertex_count());
+            for d in [&quadratic, &data] {
+                let direct = PsSpline::hermite_direct(circumscribed.clone(), d).unwrap();
+                let on_optimal = PsSpline::hermite_direct(optimal.clone(), d).unwrap();
+                let from_values = PsSpline::hermite(optimal.clone(), d).unwrap();
+                for tr in 0..t.triangle_count() {
+                    assert_eq!(direct.net(tr), on_optimal.net(tr), "{name}: triangle {tr}");
+                    for (a, b) in direct.net(tr).iter().zip(from_values.net(tr)) {
+                        assert!((a - b).abs() < 1e-14 * (1.0 + h), "{name}: {a} vs {b}");
+                    }
+                }
+            }
+            let s = PsSpline::hermite_direct(circumscribed.clone(), &quadratic).unwrap();
+            for p in sample_points(t, &optimal, &mut r, 3) {
+                let want = f.jet(p).value;
+                assert!(
+                    (s.eval(p).unwrap() - want).abs() < 4e-15 * (1.0 + h * h),
+                    "{name} at {p:?}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn splines_are_c1_across_every_edge_of_the_refinement() {
     let mut r = rng(42);
