@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pssurf::prelude::*;
 use pssurf::scattered::{
     FitError, GradientMethod, data_basis_with, estimate_gradients_by, hermite_data,
-    interpolate_with, spline_of,
+    hermite_spline_with, interpolate_with,
 };
 use pssurf::triangulation::{MAX_COORDINATE, check_coordinates, duplicate_points, morton_order};
 use pyo3::prelude::*;
@@ -23,13 +23,21 @@ use crate::evaluate::{
 /// of the data points (the engine of `pssurf.PsInterpolator`).
 #[pyclass(module = "pssurf._core", frozen)]
 pub struct Interpolant {
-    /// The spline; its PS-triangles are Dierckx's optimal ones unless `hermite` is kept.
+    /// The spline; its PS-triangles are Dierckx's optimal ones unless `deferred`.
     spline: PsSpline<f64>,
-    /// The Hermite data of a spline built on [`PsTriangleChoice::Circumscribed`] triangles
-    /// (its function does not depend on them, and they cost a tenth as much): its B-spline
-    /// form on the optimal ones is built from this data when asked for, exactly as
-    /// `pssurf fit` builds it.
-    hermite: Option<Vec<Hermite<f64>>>,
+    /// For a spline on [`PsTriangleChoice::Circumscribed`] triangles (its function does not
+    /// depend on them, and they cost a tenth as much): what builds its B-spline form on the
+    /// optimal ones when asked for.
+    deferred: Option<Deferred>,
+}
+
+/// What an interpolant on circumscribed PS-triangles keeps to build its B-spline form on
+/// the optimal ones, exactly as `pssurf fit` builds it.
+struct Deferred {
+    /// The Hermite data at each vertex.
+    hermite: Vec<Hermite<f64>>,
+    /// The caller's point of each vertex, for errors.
+    point_of: Vec<usize>,
 }
 
 impl Interpolant {
@@ -49,7 +57,8 @@ impl Interpolant {
         float_rows(py, out, W)
     }
 
-    /// The spline.
+    /// The spline, for evaluation: its B-spline coefficients and PS-triangles may be the
+    /// circumscribed ones (see `surface` for the optimal form).
     pub fn spline(&self) -> &PsSpline<f64> {
         &self.spline
     }
@@ -58,7 +67,7 @@ impl Interpolant {
     pub fn from_spline(spline: PsSpline<f64>) -> Self {
         Interpolant {
             spline,
-            hermite: None,
+            deferred: None,
         }
     }
 }
@@ -102,24 +111,34 @@ struct Data {
     triangles: Option<Vec<[usize; 3]>>,
 }
 
-/// The PS-triangles of interpolants whose gradients are given or estimated locally (see
-/// the `hermite` field of [`Interpolant`]). The global estimate's system is assembled on
-/// the PS-triangles, so its rounding depends on them: it keeps the optimal ones, and with
-/// them the CLI's result to the last bit.
-fn ps_triangles_for(method: GradientMethod, given: bool) -> PsTriangleChoice {
+/// The PS-triangles an interpolant is built on: circumscribed ones when its gradients are
+/// given or estimated locally (see the `deferred` field of [`Interpolant`]), the optimal
+/// ones for the global estimate. That estimate's system is assembled on the PS-triangles,
+/// so its rounding depends on them; on the optimal ones it is the CLI's to the last bit.
+fn ps_triangles_for(method: GradientMethod, gradients_given: bool) -> PsTriangleChoice {
     match method {
-        GradientMethod::Global if !given => PsTriangleChoice::Optimal,
+        GradientMethod::Global if !gradients_given => PsTriangleChoice::Optimal,
         _ => PsTriangleChoice::Circumscribed,
     }
+}
+
+/// What a spline built on `choice` keeps for its optimal form (see [`Deferred`]).
+fn deferred(
+    choice: &PsTriangleChoice,
+    hermite: Vec<Hermite<f64>>,
+    point_of: impl FnOnce() -> Vec<usize>,
+) -> Option<Deferred> {
+    (*choice != PsTriangleChoice::Optimal).then(|| Deferred {
+        hermite,
+        point_of: point_of(),
+    })
 }
 
 /// A built interpolant and what the caller should be warned about.
 struct Built {
     spline: PsSpline<f64>,
-    /// The spline's Hermite data.
-    hermite: Vec<Hermite<f64>>,
-    /// Whether its PS-triangles are the optimal ones.
-    optimal: bool,
+    /// What builds its optimal form, unless it has it.
+    deferred: Option<Deferred>,
     /// Groups of nearly coincident points merged into one vertex (indices of the points
     /// given; only the Delaunay path merges).
     merged: Vec<Vec<usize>>,
@@ -143,8 +162,7 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
         let choice = ps_triangles_for(method, false);
         return interpolate_with(&data.points, &data.values, method, &choice)
             .map(|i| Built {
-                optimal: choice == PsTriangleChoice::Optimal,
-                hermite: i.hermite,
+                deferred: deferred(&choice, i.hermite, || i.data_index),
                 spline: i.spline,
                 merged: i.merged,
                 peeled: i.peeled,
@@ -215,10 +233,10 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
         }
     };
     let hermite = hermite_data(&values, &gradients);
-    let spline = spline_of(basis, &hermite, &choice).map_err(named)?;
+    let n = basis.triangulation().vertex_count();
+    let spline = hermite_spline_with(basis, &hermite, &choice).map_err(named)?;
     Ok(Built {
-        optimal: choice == PsTriangleChoice::Optimal,
-        hermite,
+        deferred: deferred(&choice, hermite, || (0..n).map(point_of).collect()),
         spline,
         merged: Vec::new(),
         peeled,
@@ -271,17 +289,20 @@ fn warn_each(
     Ok(())
 }
 
-/// The spline with the Hermite data `data` on the refinement of `spline` and optimal
-/// PS-triangles.
-fn optimal_spline(spline: &PsSpline<f64>, data: &[Hermite<f64>]) -> Result<PsSpline<f64>, String> {
-    let basis = spline.basis();
-    let optimal = PsBasis::with_refinement(
-        basis.triangulation().clone(),
-        basis.refinement().clone(),
+/// The spline of the deferred Hermite data on the refinement of `spline` and optimal
+/// PS-triangles; errors name the caller's points.
+fn optimal_spline(spline: &PsSpline<f64>, deferred: &Deferred) -> Result<PsSpline<f64>, String> {
+    let named = |e: FitError| e.map_points(|v| deferred.point_of[v]).to_string();
+    let optimal = spline
+        .basis()
+        .with_ps_triangles(&PsTriangleChoice::Optimal)
+        .map_err(|e| named(e.into()))?;
+    hermite_spline_with(
+        Arc::new(optimal),
+        &deferred.hermite,
         &PsTriangleChoice::Optimal,
     )
-    .map_err(|e| e.to_string())?;
-    spline_of(Arc::new(optimal), data, &PsTriangleChoice::Optimal).map_err(|e| e.to_string())
+    .map_err(named)
 }
 
 #[pymethods]
@@ -322,7 +343,7 @@ impl Interpolant {
         warn_peeled(py, &built.peeled)?;
         Ok(Interpolant {
             spline: built.spline,
-            hermite: (!built.optimal).then_some(built.hermite),
+            deferred: built.deferred,
         })
     }
 
@@ -414,10 +435,10 @@ impl Interpolant {
 
     /// The interpolant as a functional PS surface (for `save`, `sample`, `fairness`).
     fn surface(&self, py: Python<'_>) -> PyResult<crate::surface::PySurface> {
-        let spline = match &self.hermite {
+        let spline = match &self.deferred {
             None => self.spline.clone(),
-            Some(data) => py
-                .detach(|| optimal_spline(&self.spline, data))
+            Some(d) => py
+                .detach(|| optimal_spline(&self.spline, d))
                 .map_err(value_error)?,
         };
         Ok(crate::surface::PySurface::new(

@@ -197,6 +197,25 @@ fn fit_handles_slivers_and_near_duplicates() {
             "{name}: {:?}",
             fit.peeled
         );
+        // The same slivers as the Delaunay triangulation of the points in the caller's
+        // order peels (which names them by the caller's indices, without reordering; the
+        // sets with merged points cannot be triangulated unmerged).
+        let sorted = |list: &[[usize; 3]]| {
+            let mut l: Vec<[usize; 3]> = list
+                .iter()
+                .map(|t| {
+                    let mut t = *t;
+                    t.sort_unstable();
+                    t
+                })
+                .collect();
+            l.sort_unstable();
+            l
+        };
+        if fit.merged.is_empty() {
+            let (_, direct) = Triangulation::delaunay_with_peeled(pts.clone()).unwrap();
+            assert_eq!(sorted(&fit.peeled), sorted(&direct), "{name}");
+        }
         for &[a, b, c] in &fit.peeled {
             let (u, v) = (pts[b] - pts[a], pts[c] - pts[a]);
             let longest = u.norm().max(v.norm()).max((pts[c] - pts[b]).norm());
@@ -605,4 +624,53 @@ fn interpolants_for_evaluation_equal_the_fitted_ones_on_near_degenerate_sets() {
         compared += 1;
     }
     assert_eq!(compared, 29, "every set fitted both ways");
+}
+
+/// Data whose control values fit within ±1e60 on the optimal PS-triangles but not on the
+/// larger circumscribed ones is accepted on both, as `pssurf fit` accepts it: the
+/// interpolant for evaluation decides such data on the optimal triangles.
+#[test]
+fn data_near_the_range_limit_is_decided_on_the_optimal_ps_triangles() {
+    use pssurf::scattered::{hermite_spline, hermite_spline_with};
+    use std::sync::Arc;
+    let mut r = ChaCha8Rng::seed_from_u64(31);
+    let pts: Vec<Point2<f64>> = (0..40)
+        .map(|_| Point2::new(r.random_range(0.0..1.0), r.random_range(0.0..1.0)))
+        .collect();
+    let tri = Triangulation::delaunay(pts).unwrap();
+    let optimal = PsBasis::optimal(tri).unwrap();
+    let circumscribed = optimal
+        .with_ps_triangles(&PsTriangleChoice::Circumscribed)
+        .unwrap();
+    // The vertex whose circumscribed triangle reaches furthest beyond its optimal one in x.
+    let reach = |b: &PsBasis, i: usize| {
+        let x = b.triangulation().vertex(i).x;
+        b.ps_triangle(i)
+            .v
+            .iter()
+            .map(|q| (q.x - x).abs())
+            .fold(0.0, f64::max)
+    };
+    let n = optimal.triangulation().vertex_count();
+    let i = (0..n)
+        .max_by(|&a, &b| {
+            let gain = |k| reach(&circumscribed, k) / reach(&optimal, k);
+            gain(a).total_cmp(&gain(b))
+        })
+        .unwrap();
+    let (a, b) = (reach(&optimal, i), reach(&circumscribed, i));
+    assert!(
+        b > 1.1 * a,
+        "the circumscribed triangle is larger: {b} vs {a}"
+    );
+    let mut gradients = vec![nalgebra::Vector2::zeros(); n];
+    gradients[i].x = 2e60 / (a + b);
+    let values = vec![0.0; n];
+    let data = pssurf::scattered::hermite_data(&values, &gradients);
+    let circumscribed = Arc::new(circumscribed);
+    assert!(PsSpline::hermite_direct(circumscribed.clone(), &data).is_err());
+    let fast = hermite_spline_with(circumscribed, &data, &PsTriangleChoice::Circumscribed)
+        .expect("decided on the optimal triangles");
+    let fitted = hermite_spline(Arc::new(optimal), &values, &gradients).unwrap();
+    assert_eq!(fast.coefficients(), fitted.coefficients());
 }

@@ -8,9 +8,9 @@ use nalgebra::{Point2, Vector2};
 use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
-    FitError, GradientError, GradientMethod, NEAR_DUPLICATE, Smoothing, data_basis,
-    estimate_gradients_by, hermite_spline, near_duplicate_distance, near_duplicate_groups,
-    smooth_scattered, smoothing_fit,
+    FitError, GradientMethod, NEAR_DUPLICATE, Smoothing, data_basis, estimate_gradients_by,
+    hermite_spline, near_duplicate_distance, near_duplicate_groups, smooth_scattered,
+    smoothing_fit,
 };
 
 use crate::budget::{Estimate, base_memory, count, mul};
@@ -519,14 +519,14 @@ fn fit_error(path: &Path, e: FitError) -> anyhow::Error {
             )
         }
         FitError::ControlValueOutOfRange { point } => anyhow::anyhow!(
-            "{}: row {}: its value and gradient give control values beyond ±1e60 (the gradient times the distance to its neighbours is too large): scale z or the gradients down",
+            "{}: row {}: its value and gradient give control values that are not finite numbers within ±1e60 (the gradient times the distance to its neighbours is too large): scale z or the gradients down",
             path.display(),
             point + 1
         ),
-        FitError::Gradient(GradientError { vertex }) => anyhow::anyhow!(
+        FitError::GradientAtPoint { point } => anyhow::anyhow!(
             "{}: cannot estimate the gradient at row {}: its neighbours do not span the plane",
             path.display(),
-            vertex + 1
+            point + 1
         ),
         e => anyhow::anyhow!("{}: {e}", path.display()),
     }

@@ -46,8 +46,10 @@ pub enum FormatError {
     /// A version this build cannot read.
     #[error("format version {0} is not supported (this build reads version {FORMAT_VERSION})")]
     UnsupportedVersion(u64),
-    /// The file is neither UTF-8 text nor a binary surface file.
-    #[error("is not UTF-8 text (pssurf files are JSON text, or binary .psb surfaces)")]
+    /// The file is not UTF-8 text (nor, for a surface, a binary `.psb` file).
+    #[error(
+        "is not UTF-8 text (pssurf files are JSON text; surfaces may also be binary .psb files)"
+    )]
     NotText,
     /// The contents are well-formed but invalid.
     #[error("{at}: {message}")]

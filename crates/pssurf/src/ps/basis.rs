@@ -149,6 +149,12 @@ impl PsBasis {
         })
     }
 
+    /// The basis on the same triangulation and refinement with the PS-triangles chosen by
+    /// `choice` (e.g. the optimal ones for a basis built with circumscribed ones).
+    pub fn with_ps_triangles(&self, choice: &PsTriangleChoice) -> Result<Self, PsError> {
+        Self::with_refinement(self.tri.clone(), self.refinement.clone(), choice)
+    }
+
     /// The triangulation Δ.
     pub fn triangulation(&self) -> &Triangulation {
         &self.tri
@@ -215,24 +221,30 @@ impl PsBasis {
     /// triangle `t` ((2.54)–(2.60); see [`net`]).
     pub fn stencil(&self, t: usize) -> NetStencil {
         let v = self.tri.triangle(t);
-        let z = self.refinement.z(t);
         let rows = std::array::from_fn(|c| {
-            let vi = self.tri.vertex(v[c]);
+            let (vi, ends) = self.corner_edges(t, c);
             let map = &self.ps_maps[v[c]];
-            let r_next = self.refinement.edge_point(&self.tri, t, c);
-            let r_prev = self.refinement.edge_point(&self.tri, t, (c + 2) % 3);
-            [
-                map.c,
-                map.apply(midpoint(vi, r_next)),
-                map.apply(midpoint(vi, r_prev)),
-                map.apply(midpoint(vi, z)),
-            ]
+            let [u, v, w] = ends.map(|e| map.apply(midpoint(vi, e)));
+            [map.c, u, v, w]
         });
         NetStencil {
             rows,
             lambda: self.refinement.lambda(t),
             z: self.refinement.z_bary(t),
         }
+    }
+
+    /// Corner c of triangle `t` and the far ends of the three edges of Δ* from it whose
+    /// midpoints carry the net's ordinates next to it: R_c, R_{c−1} and Z (the order of
+    /// [`NetStencil::rows`]).
+    fn corner_edges(&self, t: usize, c: usize) -> (Point2<f64>, [Point2<f64>; 3]) {
+        let vi = self.tri.vertex(self.tri.triangle(t)[c]);
+        let ends = [
+            self.refinement.edge_point(&self.tri, t, c),
+            self.refinement.edge_point(&self.tri, t, (c + 2) % 3),
+            self.refinement.z(t),
+        ];
+        (vi, ends)
     }
 
     /// The Bézier net of triangle `t` of the Hermite interpolant (2.30) with data `data(i)`
@@ -246,20 +258,15 @@ impl PsBasis {
         data: impl Fn(usize) -> super::Hermite<V>,
     ) -> [V; NET_LEN] {
         let v = self.tri.triangle(t);
-        let z = self.refinement.z(t);
         let corners = std::array::from_fn(|c| {
-            let vi = self.tri.vertex(v[c]);
+            let (vi, ends) = self.corner_edges(t, c);
             let h = data(v[c]);
-            let on_plane = |p: Point2<f64>| {
-                let half = 0.5 * (p - vi);
+            // The tangent plane at the midpoint of V_i and each end.
+            let [u, v, w] = ends.map(|e| {
+                let half = 0.5 * (e - vi);
                 h.value + h.dx * half.x + h.dy * half.y
-            };
-            [
-                h.value,
-                on_plane(self.refinement.edge_point(&self.tri, t, c)),
-                on_plane(self.refinement.edge_point(&self.tri, t, (c + 2) % 3)),
-                on_plane(z),
-            ]
+            });
+            [h.value, u, v, w]
         });
         net::complete_net(
             corners,

@@ -85,9 +85,10 @@ pub fn ps_triangles(
 ) -> Result<Vec<Triangle2>, PsError> {
     match choice {
         PsTriangleChoice::Optimal | PsTriangleChoice::Circumscribed => {
-            let find = match choice {
-                PsTriangleChoice::Circumscribed => circumscribed_ps_triangle,
-                _ => optimal_ps_triangle,
+            let find = if *choice == PsTriangleChoice::Circumscribed {
+                circumscribed_ps_triangle
+            } else {
+                optimal_ps_triangle
             };
             // In spatial order (neighbouring vertices share triangles, so caches stay warm),
             // then scattered back to vertex order.

@@ -82,12 +82,20 @@ pub enum FitError {
         /// Its longest side.
         length: f64,
     },
-    /// The value and gradient at a point give control values (2.45) beyond ±1e60: the
-    /// gradient is too large for the distance to the corners of the point's PS-triangle.
+    /// The value and gradient at a point give control values (2.45) that are not finite
+    /// within ±1e60: the gradient is not finite, or too large for the distance to the
+    /// corners of the point's PS-triangle.
     #[error(
-        "the value and gradient of point {point} give control values beyond ±1e60 (the gradient times the distance to its neighbours is too large): scale the values or gradients down"
+        "the value and gradient of point {point} give control values that are not finite numbers within ±1e60 (a gradient that is not finite, or too large for the distance to its neighbours): scale the values or gradients down"
     )]
     ControlValueOutOfRange {
+        /// The vertex, until [`FitError::map_points`] maps it to the caller's point.
+        point: usize,
+    },
+    /// The gradient at a point could not be estimated: its neighbours do not span the plane
+    /// (a [`GradientError`] mapped to the caller's point by [`FitError::map_points`]).
+    #[error("cannot estimate the gradient at point {point}: its neighbours do not span the plane")]
+    GradientAtPoint {
         /// The point (its index among the points given).
         point: usize,
     },
@@ -95,7 +103,9 @@ pub enum FitError {
 
 impl FitError {
     /// The same error with the point indices it names mapped by `index` (vertex numbers of
-    /// a reordered triangulation back to the caller's points).
+    /// a reordered triangulation back to the caller's points); a gradient that could not be
+    /// estimated, locally or as the global estimate's anchor, becomes
+    /// [`FitError::GradientAtPoint`].
     pub fn map_points(self, index: impl Fn(usize) -> usize) -> Self {
         match self {
             FitError::BeyondPrecision {
@@ -122,10 +132,13 @@ impl FitError {
             },
             FitError::Gradient(GradientError { vertex })
             | FitError::GlobalGradient(GlobalGradientError::Local(GradientError { vertex })) => {
-                FitError::Gradient(GradientError {
-                    vertex: index(vertex),
-                })
+                FitError::GradientAtPoint {
+                    point: index(vertex),
+                }
             }
+            FitError::GradientAtPoint { point } => FitError::GradientAtPoint {
+                point: index(point),
+            },
             FitError::Triangulation(TriangulationError::NearlyCollinearPoints { points }) => {
                 FitError::Triangulation(TriangulationError::NearlyCollinearPoints {
                     points: points.map(&index),
@@ -269,7 +282,7 @@ pub fn hermite_spline(
     values: &[f64],
     gradients: &[Vector2<f64>],
 ) -> Result<PsSpline<f64>, FitError> {
-    spline_of(
+    hermite_spline_with(
         basis,
         &hermite_data(values, gradients),
         &PsTriangleChoice::Optimal,
@@ -289,17 +302,24 @@ pub fn hermite_data(values: &[f64], gradients: &[Vector2<f64>]) -> Vec<Hermite<f
         .collect()
 }
 
-/// [`hermite_spline`] of Hermite data on a basis with PS-triangles chosen by `choice`:
+/// The Hermite spline of `data` on `basis`, whose PS-triangles were chosen by `choice`:
 /// [`PsSpline::hermite`] on optimal or given ones (nets as a saved file has them),
 /// [`PsSpline::hermite_direct`] on [`Circumscribed`](PsTriangleChoice::Circumscribed)
-/// ones (nets independent of them).
-pub fn spline_of(
+/// ones (nets independent of them). Control values beyond ±1e60 on the larger
+/// circumscribed triangles are decided again on the optimal ones, so that data is
+/// accepted or refused exactly as [`hermite_spline`] decides.
+pub fn hermite_spline_with(
     basis: Arc<PsBasis>,
     data: &[Hermite<f64>],
     choice: &PsTriangleChoice,
 ) -> Result<PsSpline<f64>, FitError> {
     let spline = match choice {
-        PsTriangleChoice::Circumscribed => PsSpline::hermite_direct(basis, data),
+        PsTriangleChoice::Circumscribed => match PsSpline::hermite_direct(basis.clone(), data) {
+            Err(PsError::NonFiniteCoefficient { .. }) => basis
+                .with_ps_triangles(&PsTriangleChoice::Optimal)
+                .and_then(|optimal| PsSpline::hermite(Arc::new(optimal), data)),
+            built => built,
+        },
         _ => PsSpline::hermite(basis, data),
     };
     spline.map_err(|e| match e {
@@ -322,7 +342,7 @@ pub struct Interpolant {
     /// merged into one vertex at their mean with their mean value ([`NEAR_DUPLICATE`]).
     pub merged: Vec<Vec<usize>>,
     /// The value and gradient at each vertex, which the spline interpolates (the same
-    /// spline on other PS-triangles is [`spline_of`] this data).
+    /// spline on other PS-triangles is [`hermite_spline_with`] this data).
     pub hermite: Vec<Hermite<f64>>,
     /// The boundary slivers thinner than [`PEEL_THICKNESS`](crate::triangulation::PEEL_THICKNESS)
     /// that were left out of the domain (indices of the data points at their corners).
@@ -385,7 +405,7 @@ pub fn interpolate_with(
     let named = |e: FitError| e.map_points(|v| data_index[v]);
     let (g, gradients) = estimate_gradients_by(&basis, &z, method).map_err(named)?;
     let hermite = hermite_data(&z, &g);
-    let spline = spline_of(basis, &hermite, choice).map_err(named)?;
+    let spline = hermite_spline_with(basis, &hermite, choice).map_err(named)?;
     let peeled = peeled.iter().map(|t| t.map(|v| data_index[v])).collect();
     Ok(Interpolant {
         spline,

@@ -14,8 +14,8 @@ pub use diagnostics::{NearDuplicate, near_duplicate_distance, near_duplicates, s
 pub use global::{ANCHOR, GlobalGradientError, STRONGER_ANCHORS, estimate_gradients_global};
 pub use interpolate::{
     COLLINEAR_HINT, FitError, GradientMethod, GradientReport, Interpolant, PRECISION_HINT,
-    data_basis, data_basis_with, estimate_gradients_by, hermite_data, hermite_spline, interpolate,
-    interpolate_with, spline_of,
+    data_basis, data_basis_with, estimate_gradients_by, hermite_data, hermite_spline,
+    hermite_spline_with, interpolate, interpolate_with,
 };
 pub use local::{
     GradientError, GradientFit, MAX_CONDITION, MAX_USABLE_CONDITION, estimate_gradients,
