@@ -7,8 +7,8 @@ use nalgebra::{Point2, Vector2};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pssurf::prelude::*;
 use pssurf::scattered::{
-    FitError, GradientMethod, data_basis_with, estimate_gradients_by, hermite_data,
-    hermite_spline_with, interpolate_with,
+    FitError, GradientMethod, MergedData, NEAR_DUPLICATE, data_basis_with, estimate_gradients_by,
+    hermite_data, hermite_spline_with, interpolate_with, merge_near_duplicates,
 };
 use pssurf::triangulation::{MAX_COORDINATE, check_coordinates, duplicate_points, morton_order};
 use pyo3::prelude::*;
@@ -196,9 +196,9 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
         mut gradients,
         triangles,
     } = data;
-    // Vertex k of the triangulation is point order[k] (no reordering: None).
-    let mut order: Option<Vec<u32>> = None;
-    let mut peeled = Vec::new();
+    // Vertex k of the triangulation is point vertex_point[k] (no reordering: None).
+    let mut vertex_point: Option<Vec<usize>> = None;
+    let (mut peeled, mut merged) = (Vec::new(), Vec::new());
     let tri = match triangles {
         Some(t) => Triangulation::try_new(points, t).map_err(|e| e.to_string())?,
         None => {
@@ -207,20 +207,25 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
                     "points {a} and {b} have the same (x, y); remove one"
                 ));
             }
+            // Nearly coincident points become one at their mean, with the mean value and
+            // gradient, as `pssurf fit` merges its rows.
+            let data = merge_near_duplicates(&points, &values, NEAR_DUPLICATE);
+            let gradients_merged = gradients.map(|g| merged_means(&g, &data));
             // A space-filling-curve order keeps neighbours close in memory.
-            let o = morton_order(&points);
-            points = o.iter().map(|&i| points[i as usize]).collect();
-            values = o.iter().map(|&i| values[i as usize]).collect();
-            gradients = gradients.map(|g| o.iter().map(|&i| g[i as usize]).collect());
-            let point_of = |v: usize| o[v] as usize;
+            let o = morton_order(&data.points);
+            points = o.iter().map(|&i| data.points[i as usize]).collect();
+            values = o.iter().map(|&i| data.values[i as usize]).collect();
+            gradients = gradients_merged.map(|g| o.iter().map(|&i| g[i as usize]).collect());
+            let vp: Vec<usize> = o.iter().map(|&i| data.first_index[i as usize]).collect();
             let (tri, sliver) = Triangulation::delaunay_with_peeled(points)
-                .map_err(|e| FitError::from(e).map_points(point_of).to_string())?;
-            peeled = sliver.iter().map(|t| t.map(point_of)).collect();
-            order = Some(o);
+                .map_err(|e| FitError::from(e).map_points(|v| vp[v]).to_string())?;
+            peeled = sliver.iter().map(|t| t.map(|v| vp[v])).collect();
+            merged = data.merged;
+            vertex_point = Some(vp);
             tri
         }
     };
-    let point_of = |v: usize| order.as_ref().map_or(v, |o| o[v] as usize);
+    let point_of = |v: usize| vertex_point.as_ref().map_or(v, |vp| vp[v]);
     let named = |e: FitError| e.map_points(point_of).to_string();
     let choice = ps_triangles_for(method, gradients.is_some());
     let basis = Arc::new(data_basis_with(tri, split, &choice).map_err(named)?);
@@ -238,9 +243,29 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
     Ok(Built {
         deferred: deferred(&choice, hermite, || (0..n).map(point_of).collect()),
         spline,
-        merged: Vec::new(),
+        merged,
         peeled,
     })
+}
+
+/// Each merged point's gradient: the first of its group's plus the mean of the group's
+/// differences from it (the arithmetic of the merged points and values, and of the CLI's
+/// merged rows).
+fn merged_means(gradients: &[Vector2<f64>], data: &MergedData) -> Vec<Vector2<f64>> {
+    let groups: std::collections::HashMap<usize, &Vec<usize>> =
+        data.merged.iter().map(|g| (g[0], g)).collect();
+    data.first_index
+        .iter()
+        .map(|&i| match groups.get(&i) {
+            None => gradients[i],
+            Some(group) => {
+                let shift = group
+                    .iter()
+                    .fold(Vector2::zeros(), |s, &k| s + (gradients[k] - gradients[i]));
+                gradients[i] + shift / group.len() as f64
+            }
+        })
+        .collect()
 }
 
 /// Warnings of one kind issued one by one, at most (then one for the rest).

@@ -308,3 +308,31 @@ def test_gradients_too_large_are_named_by_the_callers_point():
     g[2, 0] = 1e300
     with pytest.raises(ValueError, match="gradient of point 2 give control values that are not finite"):
         pssurf.PsInterpolator(pts, np.zeros(5), gradients=g)
+
+
+@pytest.mark.parametrize("options", [{"gradients": True}, {}])
+def test_nearly_coincident_points_are_merged_as_the_cli_merges_them(rng, cli, tmp_path, options):
+    # With values only or given gradients (the path that also serves the centroid split)
+    # alike: the same merged vertices, named in a warning, and the same file as `pssurf fit`
+    # writes (it merges rows, gradient columns included, the same way).
+    pts = rng.random((64, 2))
+    pts = np.r_[pts, pts[[7]] + 1e-15, pts[[20]] - 2e-15]
+    z = np.sin(3 * pts[:, 0]) * pts[:, 1] + 0.1 * np.arange(len(pts)) / len(pts)
+    g = np.c_[np.cos(pts[:, 0]), np.sin(pts[:, 1])]
+    kw = dict(options)
+    columns, table = "x,y,z", np.c_[pts, z]
+    if kw.pop("gradients", False):
+        kw["gradients"] = g
+        columns, table = "x,y,z,zx,zy", np.c_[pts, z, g]
+    with pytest.warns(UserWarning) as record:
+        f = pssurf.PsInterpolator(pts, z, **kw)
+    messages = " | ".join(str(w.message) for w in record)
+    assert "points 7, 64 are nearly coincident" in messages
+    assert "points 20, 65 are nearly coincident" in messages
+    assert len(f.vertices) == 64
+    data = tmp_path / "data.csv"
+    np.savetxt(data, table, delimiter=",", header=columns, comments="", fmt="%.17g")
+    ours, theirs = tmp_path / "py.json", tmp_path / "cli.json"
+    subprocess.run([cli, "fit", str(data), "-o", str(theirs)], check=True, capture_output=True)
+    f.save(ours)
+    assert ours.read_bytes() == theirs.read_bytes()
