@@ -136,7 +136,7 @@ fn quadratic_data_is_reproduced_through_the_cli() {
     ok(&["fit", &s(&data), "-o", &s(&b)]);
     // Centroids do not always give a valid refinement; the error says what to do.
     let err = fails(&["fit", &s(&data), "-o", &s(&b), "--split", "centroid"]);
-    assert!(err.contains("incentres"), "{err}");
+    assert!(err.contains("use --split incenter"), "{err}");
     let pts = write(
         d.path(),
         "pts.csv",

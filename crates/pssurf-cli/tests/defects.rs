@@ -609,3 +609,26 @@ fn a_surface_file_that_is_not_utf8_is_a_format_error() {
     let e = one_error(&pssurf(&["info", &s(&p)]));
     assert!(e.contains("is not UTF-8 text"), "{e}");
 }
+
+#[test]
+fn a_centroid_split_that_misses_an_edge_is_named_by_rows() {
+    // Audit: the message named internal triangles and vertices, and advised the incentres.
+    let d = tempfile::tempdir().unwrap();
+    let (p, t) = (d.path().join("c.csv"), d.path().join("t.csv"));
+    std::fs::write(&p, "x,y,z\n0,0,0\n0,0.1,0\n-5,1,1\n5,1,2\n").unwrap();
+    std::fs::write(&t, "0,1,2\n1,0,3\n").unwrap();
+    let out = d.path().join("o.json");
+    let e = one_error(&pssurf(&[
+        "fit",
+        &s(&p),
+        "--triangles",
+        &s(&t),
+        "--split",
+        "centroid",
+        "-o",
+        &s(&out),
+    ]));
+    assert!(e.contains("triangles at rows 1, 2, 3 and 2, 1, 4"), "{e}");
+    assert!(e.contains("--split incenter"), "{e}");
+    assert!(!out.exists());
+}

@@ -84,7 +84,7 @@ def test_quadratics_are_reproduced(rng, kwargs):
 
 def test_centroid_split_is_refused_where_invalid(rng):
     pts = rng.random((400, 2))
-    with pytest.raises(ValueError, match="incentres"):
+    with pytest.raises(ValueError, match="misses their common edge.*use the incentre split"):
         pssurf.PsInterpolator(pts, pts[:, 0], split="centroid")
 
 
@@ -336,3 +336,12 @@ def test_nearly_coincident_points_are_merged_as_the_cli_merges_them(rng, cli, tm
     subprocess.run([cli, "fit", str(data), "-o", str(theirs)], check=True, capture_output=True)
     f.save(ours)
     assert ours.read_bytes() == theirs.read_bytes()
+
+
+def test_a_centroid_split_that_misses_an_edge_names_the_points():
+    # The centroids of these two neighbours lie above their short common edge.
+    pts = np.array([[0.0, 0.0], [0.0, 0.1], [-5.0, 1.0], [5.0, 1.0]])
+    tris = np.array([[0, 1, 2], [1, 0, 3]])
+    with pytest.raises(ValueError, match="triangles at points 0, 1, 2 and at points 1, 0, 3"):
+        pssurf.PsInterpolator(pts, np.zeros(4), triangles=tris, split="centroid")
+    pssurf.PsInterpolator(pts, np.zeros(4), triangles=tris)  # the incentres fit

@@ -523,6 +523,13 @@ fn fit_error(path: &Path, e: FitError) -> anyhow::Error {
             path.display(),
             point + 1
         ),
+        FitError::SplitMissesEdge { triangles } => {
+            let [[a, b, c], [d, e, f]] = triangles.map(|t| t.map(|r| r + 1));
+            anyhow::anyhow!(
+                "{}: the split points of the triangles at rows {a}, {b}, {c} and {d}, {e}, {f} are joined by a segment that misses their common edge: this split rule does not fit the triangulation here; use --split incenter, which always does",
+                path.display()
+            )
+        }
         FitError::GradientAtPoint { point } => anyhow::anyhow!(
             "{}: cannot estimate the gradient at row {}: its neighbours do not span the plane",
             path.display(),

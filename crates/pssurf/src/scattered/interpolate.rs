@@ -92,6 +92,18 @@ pub enum FitError {
         /// The vertex, until [`FitError::map_points`] maps it to the caller's point.
         point: usize,
     },
+    /// The split rule's points do not make a PS refinement (Definition 2.16): the segment
+    /// joining the split points of two neighbouring triangles misses their common edge (the
+    /// centroid split on obtuse neighbours; the incentre split never fails so).
+    #[error(
+        "the split points of the triangles at points {}, {}, {} and at points {}, {}, {} are joined by a segment that misses their common edge: this split rule does not fit the triangulation here; use the incentre split, which always does",
+        triangles[0][0], triangles[0][1], triangles[0][2], triangles[1][0], triangles[1][1], triangles[1][2]
+    )]
+    SplitMissesEdge {
+        /// The corners of the two triangles (indices of the points given, after
+        /// [`FitError::map_points`]).
+        triangles: [[usize; 3]; 2],
+    },
     /// The gradient at a point could not be estimated: its neighbours do not span the plane
     /// (a [`GradientError`] mapped to the caller's point by [`FitError::map_points`]).
     #[error("cannot estimate the gradient at point {point}: its neighbours do not span the plane")]
@@ -138,6 +150,9 @@ impl FitError {
             }
             FitError::GradientAtPoint { point } => FitError::GradientAtPoint {
                 point: index(point),
+            },
+            FitError::SplitMissesEdge { triangles } => FitError::SplitMissesEdge {
+                triangles: triangles.map(|t| t.map(&index)),
             },
             FitError::Triangulation(TriangulationError::NearlyCollinearPoints { points }) => {
                 FitError::Triangulation(TriangulationError::NearlyCollinearPoints {
@@ -218,7 +233,14 @@ pub fn data_basis_with(
                         length,
                     })
                 }
-                _ => Err(e.into()),
+                _ => match e {
+                    PsError::EdgePointOutside {
+                        triangle, neighbor, ..
+                    } => Err(FitError::SplitMissesEdge {
+                        triangles: [tri.triangle(triangle), tri.triangle(neighbor)],
+                    }),
+                    e => Err(e.into()),
+                },
             }
         }
     }
