@@ -272,11 +272,16 @@ fn merged_means(gradients: &[Vector2<f64>], data: &MergedData) -> Vec<Vector2<f6
 const NAMED_WARNINGS: usize = 5;
 
 /// A `UserWarning` for each merged group of nearly coincident points (as the CLI warns).
-fn warn_merged(py: Python<'_>, groups: &[Vec<usize>]) -> PyResult<()> {
+fn warn_merged(py: Python<'_>, groups: &[Vec<usize>], gradients_given: bool) -> PyResult<()> {
+    let means = if gradients_given {
+        "value and gradient"
+    } else {
+        "value"
+    };
     let messages = groups.iter().map(|g| {
         let named: Vec<String> = g.iter().map(|k| k.to_string()).collect();
         format!(
-            "points {} are nearly coincident: merged into one vertex at their mean, with their mean value",
+            "points {} are nearly coincident: merged into one vertex at their mean, with their mean {means}",
             named.join(", ")
         )
     });
@@ -361,10 +366,11 @@ impl Interpolant {
                 .transpose()?,
             points,
         };
+        let gradients_given = data.gradients.is_some();
         let built = py
             .detach(|| build(data, method, split))
             .map_err(value_error)?;
-        warn_merged(py, &built.merged)?;
+        warn_merged(py, &built.merged, gradients_given)?;
         warn_peeled(py, &built.peeled)?;
         Ok(Interpolant {
             spline: built.spline,

@@ -328,6 +328,7 @@ def test_nearly_coincident_points_are_merged_as_the_cli_merges_them(rng, cli, tm
         f = pssurf.PsInterpolator(pts, z, **kw)
     messages = " | ".join(str(w.message) for w in record)
     assert "points 7, 64 are nearly coincident" in messages
+    assert ("mean value and gradient" in messages) == ("gradients" in kw)
     assert "points 20, 65 are nearly coincident" in messages
     assert len(f.vertices) == 64
     data = tmp_path / "data.csv"

@@ -674,3 +674,33 @@ fn data_near_the_range_limit_is_decided_on_the_optimal_ps_triangles() {
     let fitted = hermite_spline(Arc::new(optimal), &values, &gradients).unwrap();
     assert_eq!(fast.coefficients(), fitted.coefficients());
 }
+
+/// Every error that names points or triangle corners is renamed by `map_points` (vertex k
+/// of a reordered triangulation → the caller's point 10 k + 1), and the renamed message
+/// names the caller's points.
+#[test]
+fn errors_that_name_points_are_renamed_to_the_callers_points() {
+    let rename = |k: usize| 10 * k + 1;
+    let cases = [
+        (FitError::ControlValueOutOfRange { point: 2 }, "point 21 "),
+        (FitError::GradientAtPoint { point: 3 }, "point 31:"),
+        (
+            FitError::SplitMissesEdge {
+                triangles: [[0, 1, 2], [1, 0, 3]],
+            },
+            "points 1, 11, 21 and at points 11, 1, 31",
+        ),
+        (
+            FitError::RefinementFails {
+                corners: [4, 5, 6],
+                reason: "its split point is not strictly inside it",
+            },
+            "points 41, 51 and 61 fails",
+        ),
+        (FitError::NonFiniteValue(7), "point 71 "),
+    ];
+    for (error, named) in cases {
+        let message = error.map_points(rename).to_string();
+        assert!(message.contains(named), "{message}");
+    }
+}

@@ -530,6 +530,13 @@ fn fit_error(path: &Path, e: FitError) -> anyhow::Error {
                 path.display()
             )
         }
+        FitError::RefinementFails { corners, reason } => {
+            let [a, b, c] = corners.map(|r| r + 1);
+            anyhow::anyhow!(
+                "{}: the PS refinement of the triangle at rows {a}, {b} and {c} fails: {reason}",
+                path.display()
+            )
+        }
         FitError::GradientAtPoint { point } => anyhow::anyhow!(
             "{}: cannot estimate the gradient at row {}: its neighbours do not span the plane",
             path.display(),

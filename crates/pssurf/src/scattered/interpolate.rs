@@ -104,6 +104,19 @@ pub enum FitError {
         /// [`FitError::map_points`]).
         triangles: [[usize; 3]; 2],
     },
+    /// The PS refinement of a triangle that is not thin fails: its split point is outside
+    /// it, or one of its six pieces has (nearly) zero area.
+    #[error(
+        "the PS refinement of the triangle at points {}, {} and {} fails: {reason}",
+        corners[0], corners[1], corners[2]
+    )]
+    RefinementFails {
+        /// The triangle's corners (indices of the points given, after
+        /// [`FitError::map_points`]).
+        corners: [usize; 3],
+        /// What fails.
+        reason: &'static str,
+    },
     /// The gradient at a point could not be estimated: its neighbours do not span the plane
     /// (a [`GradientError`] mapped to the caller's point by [`FitError::map_points`]).
     #[error("cannot estimate the gradient at point {point}: its neighbours do not span the plane")]
@@ -153,6 +166,10 @@ impl FitError {
             },
             FitError::SplitMissesEdge { triangles } => FitError::SplitMissesEdge {
                 triangles: triangles.map(|t| t.map(&index)),
+            },
+            FitError::RefinementFails { corners, reason } => FitError::RefinementFails {
+                corners: corners.map(&index),
+                reason,
             },
             FitError::Triangulation(TriangulationError::NearlyCollinearPoints { points }) => {
                 FitError::Triangulation(TriangulationError::NearlyCollinearPoints {
@@ -238,6 +255,14 @@ pub fn data_basis_with(
                         triangle, neighbor, ..
                     } => Err(FitError::SplitMissesEdge {
                         triangles: [tri.triangle(triangle), tri.triangle(neighbor)],
+                    }),
+                    PsError::SplitPointOutside { triangle } => Err(FitError::RefinementFails {
+                        corners: tri.triangle(triangle),
+                        reason: "its split point is not strictly inside it",
+                    }),
+                    PsError::DegeneratePiece { triangle } => Err(FitError::RefinementFails {
+                        corners: tri.triangle(triangle),
+                        reason: "one of its six pieces has (nearly) zero area: its split points lie too close to its edges or vertices",
                     }),
                     e => Err(e.into()),
                 },
