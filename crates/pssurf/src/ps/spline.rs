@@ -338,19 +338,25 @@ pub(crate) fn rebuild_nets<T: Send>(
     }
 }
 
+/// `found` items of `what`, one per vertex of `basis`, or [`PsError::WrongCount`].
+fn one_per_vertex(basis: &PsBasis, what: &'static str, found: usize) -> Result<(), PsError> {
+    let expected = basis.triangulation().vertex_count();
+    if found != expected {
+        return Err(PsError::WrongCount {
+            what,
+            expected,
+            found,
+        });
+    }
+    Ok(())
+}
+
 /// The control values (2.45) of Hermite data on `basis`, one datum per vertex.
 fn hermite_coefficients<V: Vector>(
     basis: &PsBasis,
     data: &[Hermite<V>],
 ) -> Result<Vec<[V; 3]>, PsError> {
-    let n = basis.triangulation().vertex_count();
-    if data.len() != n {
-        return Err(PsError::WrongCount {
-            what: "Hermite data",
-            expected: n,
-            found: data.len(),
-        });
-    }
+    one_per_vertex(basis, "Hermite data", data.len())?;
     Ok(data
         .iter()
         .enumerate()
@@ -360,14 +366,7 @@ fn hermite_coefficients<V: Vector>(
 
 /// One triple of control values per vertex of `basis`, every value finite and in range.
 fn check_coefficients<V: Vector>(basis: &PsBasis, coeffs: &[[V; 3]]) -> Result<(), PsError> {
-    let n = basis.triangulation().vertex_count();
-    if coeffs.len() != n {
-        return Err(PsError::WrongCount {
-            what: "control value triples",
-            expected: n,
-            found: coeffs.len(),
-        });
-    }
+    one_per_vertex(basis, "control value triples", coeffs.len())?;
     for (i, c) in coeffs.iter().enumerate() {
         if let Some(j) = c.iter().position(|v| !v.in_range()) {
             return Err(PsError::NonFiniteCoefficient {
