@@ -152,17 +152,21 @@ impl Segment {
     /// segment, p.y).
     #[inline(always)]
     fn y_at(&self, x: f64) -> f64 {
-        if x <= self.p.x {
-            self.p.y
-        } else if x >= self.q.x {
-            self.q.y
-        } else {
-            self.p.y + self.slope * (x - self.p.x)
-        }
+        // Selects rather than branches: the line's position along a segment is unpredictable.
+        let inner = self.p.y + self.slope * (x - self.p.x);
+        let y = if x >= self.q.x { self.q.y } else { inner };
+        if x <= self.p.x { self.p.y } else { y }
     }
 }
 
 /// One piece (P_k, P_{k+1}, Z) of Δ* ready for evaluation along vertical lines.
+///
+/// Along a line its barycentric coordinates are affine, λ(y) = λ₀ + (y − y₀) w with
+/// w = ∂λ/∂y, so with the quadratic form Q of its ordinates (s = λᵀQλ, the quadratic patch
+/// of thesis (2.18)) s = λ₀ᵀQλ₀ + 2 (y − y₀) λ₀ᵀQw + (y − y₀)² wᵀQw. Taking y₀ on the
+/// piece, (y − y₀) w is a change of λ inside it (each component at most 1 in size), which
+/// keeps this as stable as de Casteljau's algorithm even on thin pieces, where a power
+/// form about a fixed point is not.
 struct Piece<V> {
     /// Its barycentric coordinates λ, about its corner Z (where λ = (0, 0, 1)).
     map: BaryMap,
@@ -173,6 +177,25 @@ struct Piece<V> {
     wqw: V,
 }
 
+/// A piece's values along one line x = const about a height y₀ on it:
+/// s = a0 + d (a1 + a2 d) for d = y − y₀.
+#[derive(Clone, Copy)]
+struct LineQuadratic<V> {
+    y0: f64,
+    a0: V,
+    a1: V,
+    a2: V,
+}
+
+impl<V: Vector> LineQuadratic<V> {
+    /// The value at height y.
+    #[inline(always)]
+    fn at(&self, y: f64) -> V {
+        let d = y - self.y0;
+        self.a0 + (self.a1 + self.a2 * d) * d
+    }
+}
+
 impl<V: Vector> Piece<V> {
     /// Piece `sub` of a triangle with net `net`, its corners `p` (the third Z); `None` if
     /// they are numerically collinear.
@@ -181,7 +204,7 @@ impl<V: Vector> Piece<V> {
             .bary_map()?
             .with_origin(p[2], [0.0, 0.0, 1.0]);
         let q = SUB_ORDINATES[sub].map(|k| net[k]);
-        let w = map.g.map(|g| g.y);
+        let w = map.dy();
         let qw = mul_q(&q, &w);
         let wqw = dot(&qw, &w);
         Some(Piece { map, q, qw, wqw })
@@ -193,18 +216,22 @@ impl<V: Vector> Piece<V> {
         self.map.apply(Point2::new(x, y))
     }
 
-    /// The values at (x, ys[j]) for j in `span`, into `row`.
+    /// The piece's values along the line at abscissa x, about the height y0 (on the piece).
     #[inline(always)]
-    fn fill(&self, x: f64, ys: &[f64], span: Range<usize>, row: &mut [V]) {
-        let y0 = ys[span.start];
+    fn along(&self, x: f64, y0: f64) -> LineQuadratic<V> {
         let l = self.bary(x, y0);
-        let a0 = dot(&mul_q(&self.q, &l), &l);
-        let a1 = dot(&self.qw, &l) * 2.0;
-        let a2 = self.wqw;
-        for (o, &y) in row[span.clone()].iter_mut().zip(&ys[span]) {
-            let d = y - y0;
-            *o = a0 + (a1 + a2 * d) * d;
+        LineQuadratic {
+            y0,
+            a0: dot(&mul_q(&self.q, &l), &l),
+            a1: dot(&self.qw, &l) * 2.0,
+            a2: self.wqw,
         }
+    }
+
+    /// The value at (x, y).
+    #[inline(always)]
+    fn value(&self, x: f64, y: f64) -> V {
+        self.along(x, y).a0
     }
 }
 
@@ -272,9 +299,8 @@ struct Cell<'a, V> {
     boundary: [bool; 6],
     /// Whether any does.
     on_boundary: bool,
-    /// The pieces (P_k, P_{k+1}, Z), made when first needed (`Some(None)` for a piece that
-    /// is numerically degenerate).
-    pieces: [Option<Option<Piece<V>>>; 6],
+    /// The pieces (P_k, P_{k+1}, Z) (`None` for a piece that is numerically degenerate).
+    pieces: [Option<Piece<V>>; 6],
 }
 
 impl<'a, V: Vector> Cell<'a, V> {
@@ -320,23 +346,21 @@ impl<'a, V: Vector> Cell<'a, V> {
         self.t = t;
         self.z = refinement.z(t);
         self.on_boundary = self.boundary.contains(&true);
+        let net = self.spline.net(t);
         for k in 0..6 {
             self.rays[k] = Segment::new(self.z, self.p[k]);
             self.outer[k] = Segment::new(self.p[k], self.p[NEXT[k]]);
-            self.pieces[k] = None;
+            self.pieces[k] = Piece::new([self.p[k], self.p[NEXT[k]], self.z], net, k);
         }
     }
 
-    /// Piece k, made on first use. `None` only when its corners are numerically collinear:
-    /// the refinement rejects such pieces, but the edge point shared with the neighbour may
-    /// differ from this triangle's own by rounding; its points are then left to the
-    /// neighbouring pieces, which reach to within rounding of them.
+    /// Piece k. `None` only when its corners are numerically collinear: the refinement
+    /// rejects such pieces, but the edge point shared with the neighbour may differ from this
+    /// triangle's own by rounding; its points are then left to the neighbouring pieces,
+    /// which reach to within rounding of them.
     #[inline(always)]
-    fn piece(&mut self, k: usize) -> Option<&Piece<V>> {
-        let (p, z, spline, t) = (self.p, self.z, self.spline, self.t);
-        self.pieces[k]
-            .get_or_insert_with(|| Piece::new([p[k], p[NEXT[k]], z], spline.net(t), k))
-            .as_ref()
+    fn piece(&self, k: usize) -> Option<&Piece<V>> {
+        self.pieces[k].as_ref()
     }
 }
 
@@ -395,7 +419,7 @@ impl<V: Vector> PsSpline<V> {
                     cell.load(t);
                     for i in own {
                         let row = &mut rows[(i - band.start) * ny..(i - band.start + 1) * ny];
-                        scan_line(&mut cell, &grid, i, row);
+                        scan_line(&cell, &grid, i, row);
                     }
                 }
             });
@@ -426,7 +450,13 @@ fn arc_start(mask: u32) -> usize {
 }
 
 /// Fills the grid points of line `i` inside `cell`'s triangle.
-fn scan_line<V: Vector>(cell: &mut Cell<'_, V>, grid: &Grid<'_>, i: usize, row: &mut [V]) {
+///
+/// The line passes upwards through pieces m = 0 … len, piece m up to the height top_m at
+/// which it crosses the next ray (the exit from the triangle for the last). A grid point at
+/// height y belongs to the first piece m with y ≤ top_m; with the running maxima T_m of the
+/// tops (equal to them but for rounding) that m is the number of T_m below y, counted
+/// without branches.
+fn scan_line<V: Vector>(cell: &Cell<'_, V>, grid: &Grid<'_>, i: usize, row: &mut [V]) {
     let x = grid.xs.values[i];
     let right = x >= cell.z.x;
     let mut mask = 0u32;
@@ -447,29 +477,36 @@ fn scan_line<V: Vector>(cell: &mut Cell<'_, V>, grid: &Grid<'_>, i: usize, row: 
     let entry = cell.outer[first].y_at(x);
     let exit = cell.outer[last].y_at(x);
     let ys = grid.ys.values;
-    let mut j = grid.ys.first_at_least(entry.min(exit));
     let hi = entry.max(exit);
+    let (start, end) = (
+        grid.ys.first_at_least(entry.min(exit)),
+        grid.ys.first_above(hi),
+    );
     if cell.on_boundary {
-        extend(cell, x, ys, j, row, -1);
+        extend(cell, x, ys, start, row, -1);
     }
-    for m in 0..=len {
-        let top = if m == len {
-            hi
-        } else {
-            cell.rays[ray(m)].y_at(x).min(hi)
-        };
-        let start = j;
-        while j < ys.len() && ys[j] <= top {
-            j += 1;
-        }
-        if j > start
-            && let Some(p) = cell.piece(piece(m))
-        {
-            p.fill(x, ys, start..j, row);
+    // T_m for m < len; the rest never lie below a point of the span.
+    let mut tops = [f64::INFINITY; 5];
+    let mut below = f64::NEG_INFINITY;
+    for (m, top) in tops.iter_mut().enumerate().take(len) {
+        below = below.max(cell.rays[ray(m)].y_at(x).min(hi));
+        *top = below;
+    }
+    // Each piece about the height where the line enters it.
+    let mut lines = [None; 6];
+    let mut bottom = entry.min(exit);
+    for (m, line) in lines.iter_mut().enumerate().take(len + 1) {
+        *line = cell.piece(piece(m)).map(|p| p.along(x, bottom));
+        bottom = tops[m.min(4)];
+    }
+    for (o, &y) in row[start..end.max(start)].iter_mut().zip(&ys[start..]) {
+        let m = tops.iter().map(|&t| (t < y) as usize).sum::<usize>();
+        if let Some(line) = &lines[m] {
+            *o = line.at(y);
         }
     }
     if cell.on_boundary {
-        extend(cell, x, ys, j, row, 1);
+        extend(cell, x, ys, end.max(start), row, 1);
     }
 }
 
@@ -479,7 +516,7 @@ fn scan_line<V: Vector>(cell: &mut Cell<'_, V>, grid: &Grid<'_>, i: usize, row: 
 /// downwards (`step` = −1, `from` excluded) or upwards (`step` = 1, `from` included). Along
 /// a line that runs on a boundary edge, the piece the line enters by need not be that edge's.
 fn extend<V: Vector>(
-    cell: &mut Cell<'_, V>,
+    cell: &Cell<'_, V>,
     x: f64,
     ys: &[f64],
     from: usize,
@@ -500,7 +537,7 @@ fn extend<V: Vector>(
         let Some(piece) = near.and_then(|k| cell.piece(k)) else {
             return;
         };
-        piece.fill(x, ys, j..j + 1, row);
+        row[j] = piece.value(x, ys[j]);
         j = j.wrapping_add_signed(step);
     }
 }
