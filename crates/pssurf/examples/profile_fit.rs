@@ -8,8 +8,8 @@ use std::time::Instant;
 use nalgebra::Point2;
 use pssurf::prelude::*;
 use pssurf::scattered::{
-    GradientMethod, NEAR_DUPLICATE, data_basis_with, estimate_gradients_by, hermite_spline,
-    interpolate_with, merge_near_duplicates,
+    GradientMethod, NEAR_DUPLICATE, data_basis_with, estimate_gradients_by, hermite_data,
+    hermite_spline_with, interpolate_with, merge_near_duplicates,
 };
 
 #[path = "../benches/common.rs"]
@@ -48,14 +48,15 @@ fn phases(
     method: GradientMethod,
     choice: &PsTriangleChoice,
 ) {
-    let mut best = [f64::INFINITY; 6];
+    let mut best = [f64::INFINITY; 7];
     let names = [
         "checks",
         "merge",
         "order",
         "delaunay",
         "basis",
-        "gradients+hermite",
+        "gradients",
+        "hermite nets",
     ];
     for _ in 0..repeats {
         let mut lap = Lap::new();
@@ -73,8 +74,10 @@ fn phases(
         let basis = Arc::new(data_basis_with(tri, SplitRule::Incenter, choice).unwrap());
         lap.mark(&mut best[4]);
         let (g, _) = estimate_gradients_by(&basis, &zz, method).unwrap();
-        std::hint::black_box(hermite_spline(basis, &zz, &g).unwrap());
         lap.mark(&mut best[5]);
+        let data = hermite_data(&zz, &g);
+        std::hint::black_box(hermite_spline_with(basis, &data, choice).unwrap());
+        lap.mark(&mut best[6]);
     }
     for (name, t) in names.iter().zip(best) {
         println!("  {name:<18} {:7.2} ms", t * 1e3);

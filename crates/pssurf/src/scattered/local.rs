@@ -43,27 +43,44 @@ pub fn estimate_gradients(
     (0..tri.vertex_count())
         .into_par_iter()
         .with_min_len(512)
-        .map_init(Vec::new, |work, i| gradient_at(tri, values, i, work))
+        .map_init(Workspace::default, |work, i| {
+            gradient_at(tri, values, i, work)
+        })
         .collect()
+}
+
+/// Buffers reused from vertex to vertex (one per thread): the neighbourhood and the design
+/// matrix, so that estimating a gradient allocates nothing once they have grown.
+#[derive(Default)]
+struct Workspace {
+    /// The vertex and its neighbours found so far, the vertex first.
+    seen: Vec<usize>,
+    /// The ring last added, and the next one being collected.
+    ring: Vec<usize>,
+    next: Vec<usize>,
+    /// The design matrix of the fit (column-major).
+    design: Vec<f64>,
 }
 
 fn gradient_at(
     tri: &Triangulation,
     values: &[f64],
     i: usize,
-    work: &mut Vec<f64>,
+    work: &mut Workspace,
 ) -> Result<(Vector2<f64>, GradientFit), GradientError> {
-    let mut ring = vec![i];
-    let mut seen = vec![i];
+    work.seen.clear();
+    work.seen.push(i);
+    work.ring.clear();
+    work.ring.push(i);
     // The best-conditioned quadratic fit so far: (condition, gradient, rings).
     let mut best: Option<(f64, Vector2<f64>, usize)> = None;
     for rings in 1..=3 {
-        ring = next_ring(tri, &ring, &mut seen);
-        let nbrs = &seen[1..];
+        next_ring(tri, work);
+        let nbrs = &work.seen[1..];
         if nbrs.len() < 5 {
             continue;
         }
-        if let Some((g, cond)) = fit(tri, values, i, nbrs, true, work) {
+        if let Some((g, cond)) = fit(tri, values, i, nbrs, true, &mut work.design) {
             if cond <= MAX_CONDITION {
                 return Ok((g, GradientFit::Quadratic { rings }));
             }
@@ -79,26 +96,27 @@ fn gradient_at(
     {
         return Ok((g, GradientFit::Quadratic { rings }));
     }
-    fit(tri, values, i, &seen[1..], false, work)
+    fit(tri, values, i, &work.seen[1..], false, &mut work.design)
         .filter(|(_, cond)| *cond <= MAX_USABLE_CONDITION)
         .map(|(g, _)| (g, GradientFit::Linear))
         .ok_or(GradientError { vertex: i })
 }
 
-/// The vertices adjacent to `ring` not yet `seen` (which is extended).
-fn next_ring(tri: &Triangulation, ring: &[usize], seen: &mut Vec<usize>) -> Vec<usize> {
-    let mut out = Vec::new();
-    for &v in ring {
+/// Makes the vertices adjacent to `work.ring` not yet `work.seen` the new ring, adding
+/// them to `seen`.
+fn next_ring(tri: &Triangulation, work: &mut Workspace) {
+    work.next.clear();
+    for &v in &work.ring {
         for &t in tri.molecule(v) {
             for w in tri.triangle(t as usize) {
-                if !seen.contains(&w) {
-                    seen.push(w);
-                    out.push(w);
+                if !work.seen.contains(&w) {
+                    work.seen.push(w);
+                    work.next.push(w);
                 }
             }
         }
     }
-    out
+    std::mem::swap(&mut work.ring, &mut work.next);
 }
 
 /// The largest condition number of a local fit's column-scaled design matrix that counts as
