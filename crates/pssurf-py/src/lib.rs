@@ -12,6 +12,13 @@ mod surface;
 
 use pyo3::prelude::*;
 
+// mimalloc keeps freed memory for reuse and per-thread heaps: with glibc's allocator each
+// interpolant's large fresh buffers were mapped, faulted in and unmapped again, and the
+// threads of a parallel fit contended for its arena lock (measured in docs/performance.md).
+// Arrays handed to NumPy are freed by the same allocator when NumPy drops them.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The module `pssurf._core`.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
