@@ -7,8 +7,8 @@ use nalgebra::{Point2, Vector2};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pssurf::prelude::*;
 use pssurf::scattered::{
-    FitError, GradientMethod, MergedData, NEAR_DUPLICATE, data_basis_with, estimate_gradients_by,
-    hermite_data, hermite_spline_with, interpolate_with, merge_near_duplicates,
+    FitError, GradientMethod, NEAR_DUPLICATE, data_basis_with, estimate_gradients_by, hermite_data,
+    hermite_spline_with, interpolate_with, merge_near_duplicates,
 };
 use pssurf::triangulation::{MAX_COORDINATE, check_coordinates, duplicate_points, morton_order};
 use pyo3::prelude::*;
@@ -210,7 +210,7 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
             // Nearly coincident points become one at their mean, with the mean value and
             // gradient, as `pssurf fit` merges its rows.
             let data = merge_near_duplicates(&points, &values, NEAR_DUPLICATE);
-            let gradients_merged = gradients.map(|g| merged_means(&g, &data));
+            let gradients_merged = gradients.map(|g| data.mean_of(&g));
             // A space-filling-curve order keeps neighbours close in memory.
             let o = morton_order(&data.points);
             points = o.iter().map(|&i| data.points[i as usize]).collect();
@@ -246,26 +246,6 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
         merged,
         peeled,
     })
-}
-
-/// Each merged point's gradient: the first of its group's plus the mean of the group's
-/// differences from it (the arithmetic of the merged points and values, and of the CLI's
-/// merged rows).
-fn merged_means(gradients: &[Vector2<f64>], data: &MergedData) -> Vec<Vector2<f64>> {
-    let groups: std::collections::HashMap<usize, &Vec<usize>> =
-        data.merged.iter().map(|g| (g[0], g)).collect();
-    data.first_index
-        .iter()
-        .map(|&i| match groups.get(&i) {
-            None => gradients[i],
-            Some(group) => {
-                let shift = group
-                    .iter()
-                    .fold(Vector2::zeros(), |s, &k| s + (gradients[k] - gradients[i]));
-                gradients[i] + shift / group.len() as f64
-            }
-        })
-        .collect()
 }
 
 /// Warnings of one kind issued one by one, at most (then one for the rest).

@@ -9,7 +9,7 @@ use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
     FitError, GradientMethod, NEAR_DUPLICATE, Smoothing, data_basis, estimate_gradients_by,
-    hermite_spline, near_duplicate_distance, near_duplicate_groups, smooth_scattered,
+    group_mean, hermite_spline, near_duplicate_distance, near_duplicate_groups, smooth_scattered,
     smoothing_fit,
 };
 
@@ -615,10 +615,7 @@ fn merge_rows(rows: Vec<Vec<f64>>, groups: &[Vec<usize>]) -> (Vec<Vec<f64>>, Vec
         let row = match group_of[k] {
             None => row.clone(),
             Some(g) if g[0] == k => (0..row.len())
-                .map(|c| {
-                    let shift = g.iter().map(|&i| rows[i][c] - row[c]).sum::<f64>();
-                    row[c] + shift / g.len() as f64
-                })
+                .map(|c| group_mean(g, |i| rows[i][c]))
                 .collect(),
             Some(_) => continue,
         };

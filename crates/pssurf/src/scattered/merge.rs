@@ -9,6 +9,8 @@
 //! units in the last place: far from the origin (1e6 + ε), the triangles between them are
 //! finer than the split points can be placed.
 
+use std::ops::{Add, Div, Sub};
+
 use nalgebra::Point2;
 
 /// Relative distance (a fraction of the diagonal of the data's bounding box) below which
@@ -189,8 +191,7 @@ pub fn merge_near_duplicates(points: &[Point2<f64>], values: &[f64], relative: f
                     .fold(nalgebra::Vector2::zeros(), |s, &k| s + (points[k] - p))
                     / n;
                 out.points.push(p + shift);
-                out.values
-                    .push(v + rows.iter().map(|&k| values[k] - v).sum::<f64>() / n);
+                out.values.push(group_mean(rows, |k| values[k]));
                 out.first_index.push(i);
             }
             _ => {}
@@ -198,6 +199,44 @@ pub fn merge_near_duplicates(points: &[Point2<f64>], values: &[f64], relative: f
     }
     out.merged = merged;
     out
+}
+
+/// The mean of a merged group's entries, `entry(k)` for its indices k, as
+/// [`merge_near_duplicates`] takes the mean of their values: the first entry plus the mean
+/// of the differences from it (exact to rounding even far from zero). For other columns
+/// given with the points (gradients, further data), so that they merge as the values do.
+pub fn group_mean<T>(group: &[usize], entry: impl Fn(usize) -> T) -> T
+where
+    T: Copy + Add<Output = T> + Sub<Output = T> + Div<f64, Output = T>,
+{
+    let first = entry(group[0]);
+    let shift = group[1..]
+        .iter()
+        .map(|&k| entry(k) - first)
+        .reduce(|s, d| s + d);
+    match shift {
+        Some(shift) => first + shift / group.len() as f64,
+        None => first,
+    }
+}
+
+impl MergedData {
+    /// Another column given with the points (one entry per input point), merged as the
+    /// values are: one entry per merged point, the [`group_mean`] of a merged group.
+    pub fn mean_of<T>(&self, column: &[T]) -> Vec<T>
+    where
+        T: Copy + Add<Output = T> + Sub<Output = T> + Div<f64, Output = T>,
+    {
+        // The groups come in the order of their first indices, as the merged points do.
+        let mut groups = self.merged.iter().peekable();
+        self.first_index
+            .iter()
+            .map(|&i| match groups.next_if(|g| g[0] == i) {
+                Some(group) => group_mean(group, |k| column[k]),
+                None => column[i],
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]
@@ -223,11 +262,33 @@ mod tests {
         assert_eq!(m.values, vec![0.0, 3.0, 3.0, 6.0]);
         assert!((m.points[1] - p(1.0 + 1e-12, 0.0)).norm() < 1e-15);
         assert!((m.points[2] - p(0.5e-13, 1.0)).norm() < 1e-15);
+        // Other columns merge as the values do: the values themselves, bit for bit, and
+        // vectors (their mean, exactly representable here).
+        assert_eq!(m.mean_of(&values), m.values);
+        let gradients: Vec<nalgebra::Vector2<f64>> = values
+            .iter()
+            .map(|&v| nalgebra::Vector2::new(v, -2.0 * v))
+            .collect();
+        let means = m.mean_of(&gradients);
+        assert_eq!(means.len(), 4);
+        assert_eq!(means[1], nalgebra::Vector2::new(3.0, -6.0));
+        assert_eq!(means[3], gradients[5]);
         // Nothing is merged at a tighter tolerance, or when every point is far apart.
         let none = merge_near_duplicates(&pts, &values, 1e-14);
         assert!(none.merged.is_empty());
         assert_eq!(none.points, pts.to_vec());
         assert_eq!(none.first_index, (0..7).collect::<Vec<_>>());
+    }
+
+    /// Far from zero the mean of a group is exact to rounding of the result (a plain sum
+    /// would lose the offsets' digits): entries 4e15 + k, k = 0 … 4, have the mean
+    /// 4e15 + 2 (their plain sum makes it 4e15 + 2.5).
+    #[test]
+    fn group_means_are_exact_far_from_zero() {
+        let column: Vec<f64> = (0..5).map(|k| 4e15 + k as f64).collect();
+        assert_eq!(group_mean(&[0, 1, 2, 3, 4], |k| column[k]), 4e15 + 2.0);
+        assert_eq!(group_mean(&[4, 0], |k| column[k]), 4e15 + 2.0);
+        assert_eq!(group_mean(&[3], |k| column[k]), column[3]);
     }
 
     /// The groups are the connected components of "within the tolerance", found here by

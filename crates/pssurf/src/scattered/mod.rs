@@ -20,7 +20,9 @@ pub use interpolate::{
 pub use local::{
     GradientError, GradientFit, MAX_CONDITION, MAX_USABLE_CONDITION, estimate_gradients,
 };
-pub use merge::{MergedData, NEAR_DUPLICATE, merge_near_duplicates, near_duplicate_groups};
+pub use merge::{
+    MergedData, NEAR_DUPLICATE, group_mean, merge_near_duplicates, near_duplicate_groups,
+};
 pub use smoothing::{
     Smoothing, SmoothingError, SmoothingFit, Trial, smooth_scattered, smoothing_fit,
 };
