@@ -7,10 +7,10 @@ use nalgebra::{Point2, Vector2};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pssurf::prelude::*;
 use pssurf::scattered::{
-    FitError, GradientMethod, NEAR_DUPLICATE, data_basis_with, estimate_gradients_by, hermite_data,
-    hermite_spline_with, interpolate_with, merge_near_duplicates,
+    FitError, GradientMethod, NEAR_DUPLICATE, check_points, data_basis_with, estimate_gradients_by,
+    hermite_data, hermite_spline_with, interpolate_with, merge_near_duplicates,
 };
-use pssurf::triangulation::{MAX_COORDINATE, check_coordinates, duplicate_points, morton_order};
+use pssurf::triangulation::{MAX_COORDINATE, morton_order};
 use pyo3::prelude::*;
 
 use crate::arrays::{float_rows, points_from, rows3, slice, triangles_from, vectors_from};
@@ -189,7 +189,7 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
             return Err(format!("the gradient of point {k} is not finite"));
         }
     }
-    check_coordinates(&data.points).map_err(|e| e.to_string())?;
+    check_points(&data.points).map_err(|e| e.to_string())?;
     let Data {
         mut points,
         mut values,
@@ -202,11 +202,6 @@ fn build(data: Data, method: GradientMethod, split: SplitRule) -> Result<Built, 
     let tri = match triangles {
         Some(t) => Triangulation::try_new(points, t).map_err(|e| e.to_string())?,
         None => {
-            if let Some((a, b)) = duplicate_points(&points) {
-                return Err(format!(
-                    "points {a} and {b} have the same (x, y); remove one"
-                ));
-            }
             // Nearly coincident points become one at their mean, with the mean value and
             // gradient, as `pssurf fit` merges its rows.
             let data = merge_near_duplicates(&points, &values, NEAR_DUPLICATE);

@@ -209,6 +209,11 @@ def test_inputs_are_converted(rng):
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"triangles": [[0.0, 1, 2]]}, "integer"),
         (np.array([[0, 0], [1, 0], [0, 1e308]]), np.zeros(3), {}, "range"),
         (np.array([[0, 0], [1, 0], [0, np.inf]]), np.zeros(3), {}, "finite"),
+        # Bad coordinates and repeated points named as the caller's points, on every path.
+        (np.where(np.arange(20).reshape(10, 2) == 15, 1e308, np.random.default_rng(2).random((10, 2))), np.zeros(10), {}, "^point 7 has a coordinate outside"),
+        (np.where(np.arange(20).reshape(10, 2) == 15, np.nan, np.random.default_rng(2).random((10, 2))), np.zeros(10), {"gradients": np.zeros((10, 2))}, "^point 7 has a coordinate that is not"),
+        (np.random.default_rng(2).random((10, 2))[[0, 1, 2, 3, 4, 5, 6, 7, 8, 3]], np.zeros(10), {}, "^points 3 and 9 have the same"),
+        (np.random.default_rng(2).random((10, 2))[[0, 1, 2, 3, 4, 5, 6, 7, 8, 3]], np.zeros(10), {"gradients": np.zeros((10, 2))}, "^points 3 and 9 have the same"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros((3, 2)), {}, "values must have shape"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), ["a", "b", "c"], {}, "real numbers"),
         # Values beyond ±1e60 named by the caller's row, with or without gradients.
@@ -223,6 +228,13 @@ def test_inputs_are_converted(rng):
 def test_bad_input_raises_value_error(points, values, kwargs, message):
     with pytest.raises(ValueError, match=message):
         pssurf.PsInterpolator(points, values, **kwargs)
+
+
+def test_smoothing_names_bad_points():
+    pts = np.random.default_rng(3).random((50, 2))
+    pts[17, 1] = 1e308
+    with pytest.raises(ValueError, match="^point 17 has a coordinate outside"):
+        pssurf.fit_smooth(pts, np.zeros(50))
 
 
 def test_bad_queries_raise_value_error(rng):

@@ -698,9 +698,42 @@ fn errors_that_name_points_are_renamed_to_the_callers_points() {
             "points 41, 51 and 61 fails",
         ),
         (FitError::NonFiniteValue(7), "point 71 "),
+        (FitError::NonFiniteCoordinate(8), "point 81 "),
+        (FitError::CoordinateOutOfRange(9), "point 91 "),
+        (
+            FitError::DuplicatePoints {
+                first: 5,
+                second: 2,
+            },
+            "points 21 and 51 ",
+        ),
     ];
     for (error, named) in cases {
         let message = error.map_points(rename).to_string();
         assert!(message.contains(named), "{message}");
     }
+}
+
+/// Careless coordinates and repeated points are named as the caller's points, not as
+/// vertices of a triangulation (the points are reordered before they become vertices).
+#[test]
+fn bad_points_are_named_as_points() {
+    let mut pts: Vec<Point2<f64>> = (0..30)
+        .map(|k| Point2::new((k % 6) as f64, (k / 6) as f64 + 0.1 * (k % 6) as f64))
+        .collect();
+    let z = vec![0.0; pts.len()];
+    let message = |pts: &[Point2<f64>]| {
+        interpolate(pts, &z, GradientMethod::Local)
+            .expect_err("bad points")
+            .to_string()
+    };
+    pts[17].x = 1e308;
+    assert!(message(&pts).starts_with("point 17 has a coordinate outside"));
+    pts[17].x = f64::NAN;
+    assert!(message(&pts).starts_with("point 17 has a coordinate that is not"));
+    pts[17] = pts[4];
+    assert_eq!(
+        message(&pts),
+        "points 4 and 17 have the same (x, y); remove one"
+    );
 }

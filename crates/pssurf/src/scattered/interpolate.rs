@@ -41,6 +41,22 @@ pub enum FitError {
     /// A value is NaN or infinite.
     #[error("the value of point {0} is not a finite number within ±1e60")]
     NonFiniteValue(usize),
+    /// A data point's coordinate is NaN or infinite ([`check_points`]).
+    #[error("point {0} has a coordinate that is not a finite number")]
+    NonFiniteCoordinate(usize),
+    /// A data point's coordinate is outside the range pssurf supports ([`check_points`]).
+    #[error(
+        "point {0} has a coordinate outside the range pssurf supports (0, or 1e-42 to 1e60 in magnitude)"
+    )]
+    CoordinateOutOfRange(usize),
+    /// Two data points are equal ([`check_points`]).
+    #[error("points {first} and {second} have the same (x, y); remove one")]
+    DuplicatePoints {
+        /// The first of them.
+        first: usize,
+        /// The second.
+        second: usize,
+    },
     /// The points cannot be triangulated (duplicates, collinear, non-finite…).
     #[error(transparent)]
     Triangulation(#[from] TriangulationError),
@@ -152,6 +168,15 @@ impl FitError {
                 length,
             },
             FitError::NonFiniteValue(k) => FitError::NonFiniteValue(index(k)),
+            FitError::NonFiniteCoordinate(k) => FitError::NonFiniteCoordinate(index(k)),
+            FitError::CoordinateOutOfRange(k) => FitError::CoordinateOutOfRange(index(k)),
+            FitError::DuplicatePoints { first, second } => {
+                let (a, b) = (index(first), index(second));
+                FitError::DuplicatePoints {
+                    first: a.min(b),
+                    second: a.max(b),
+                }
+            }
             FitError::ControlValueOutOfRange { point } => FitError::ControlValueOutOfRange {
                 point: index(point),
             },
@@ -179,6 +204,26 @@ impl FitError {
             e => e,
         }
     }
+}
+
+/// Checks data points as every fit needs them, in the order given so that errors name the
+/// caller's points: finite coordinates within the range pssurf supports (see
+/// [`check_coordinates`](crate::triangulation::check_coordinates)) and no two equal.
+pub fn check_points(points: &[Point2<f64>]) -> Result<(), FitError> {
+    check_point_coordinates(points)?;
+    match duplicate_points(points) {
+        Some((first, second)) => Err(FitError::DuplicatePoints { first, second }),
+        None => Ok(()),
+    }
+}
+
+/// The coordinate half of [`check_points`].
+pub(super) fn check_point_coordinates(points: &[Point2<f64>]) -> Result<(), FitError> {
+    crate::triangulation::check_coordinates(points).map_err(|e| match e {
+        TriangulationError::NonFiniteVertex(k) => FitError::NonFiniteCoordinate(k),
+        TriangulationError::CoordinateOutOfRange(k) => FitError::CoordinateOutOfRange(k),
+        e => e.into(),
+    })
 }
 
 /// Relative thinness (smallest height over longest side) below which a failure of the PS
@@ -430,10 +475,7 @@ pub fn interpolate_with(
     if let Some(k) = values.iter().position(|v| !(v.abs() <= MAX_COORDINATE)) {
         return Err(FitError::NonFiniteValue(k));
     }
-    crate::triangulation::check_coordinates(points)?;
-    if let Some((first, second)) = duplicate_points(points) {
-        return Err(TriangulationError::DuplicateVertex { first, second }.into());
-    }
+    check_points(points)?;
     let data = merge_near_duplicates(points, values, NEAR_DUPLICATE);
     // A space-filling-curve order keeps neighbouring vertices close in memory.
     let order: Vec<usize> = morton_order(&data.points)

@@ -14,7 +14,7 @@ pub use diagnostics::{NearDuplicate, near_duplicate_distance, near_duplicates, s
 pub use global::{ANCHOR, GlobalGradientError, STRONGER_ANCHORS, estimate_gradients_global};
 pub use interpolate::{
     COLLINEAR_HINT, FitError, GradientMethod, GradientReport, Interpolant, PRECISION_HINT,
-    data_basis, data_basis_with, estimate_gradients_by, hermite_data, hermite_spline,
+    check_points, data_basis, data_basis_with, estimate_gradients_by, hermite_data, hermite_spline,
     hermite_spline_with, interpolate, interpolate_with,
 };
 pub use local::{

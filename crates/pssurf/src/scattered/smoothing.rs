@@ -89,6 +89,10 @@ pub enum SmoothingError {
     /// ([`FitError::BeyondPrecision`](super::FitError::BeyondPrecision), with data indices).
     #[error(transparent)]
     BeyondPrecision(super::FitError),
+    /// A data point is unusable ([`FitError::NonFiniteCoordinate`](super::FitError::NonFiniteCoordinate)
+    /// or [`FitError::CoordinateOutOfRange`](super::FitError::CoordinateOutOfRange)).
+    #[error(transparent)]
+    Data(super::FitError),
 }
 
 impl From<SparseError> for SmoothingError {
@@ -249,7 +253,7 @@ fn check_input(
         )));
     }
     // Not finite, or so large that areas overflow (the data's indices: the input order).
-    crate::triangulation::check_coordinates(points)?;
+    super::interpolate::check_point_coordinates(points).map_err(SmoothingError::Data)?;
     if let Smoothing::Fixed(lambda) = smoothing
         && !(lambda >= 0.0 && lambda.is_finite())
     {
