@@ -90,6 +90,36 @@ fn clockwise_input_is_reoriented() {
     assert_eq!((0..3).filter(|&i| t.neighbor(0, i).is_some()).count(), 1);
 }
 
+/// Two triangles on the same side of an edge are found whichever end of the edge has the
+/// smaller molecule (the one the adjacency search scans): a fan of eight triangles around
+/// vertex 0 and one more triangle on edge 0 → 1, or on edge 2 → 0, running the same way.
+#[test]
+fn overlaps_are_found_from_either_end_of_the_edge() {
+    let mut v = vec![p(0., 0.)];
+    for k in 0..8 {
+        let a = (45.0 * k as f64).to_radians();
+        v.push(p(a.cos(), a.sin()));
+    }
+    v.push(p(0.6, 0.2));
+    let fan: Vec<[usize; 3]> = (1..=8).map(|k| [0, k, k % 8 + 1]).collect();
+    assert!(Triangulation::try_new(v[..9].to_vec(), fan.clone()).is_ok());
+    for extra in [[0, 1, 9], [2, 0, 9]] {
+        for first in [true, false] {
+            let mut tris = fan.clone();
+            if first {
+                tris.insert(0, extra);
+            } else {
+                tris.push(extra);
+            }
+            let e = Triangulation::try_new(v.clone(), tris).unwrap_err();
+            assert!(
+                matches!(e, TriangulationError::NonConforming { .. }),
+                "{extra:?}: {e}"
+            );
+        }
+    }
+}
+
 #[test]
 fn bad_triangulations_are_rejected_with_the_offending_element() {
     use TriangulationError as E;

@@ -208,33 +208,38 @@ fn triangle_neighbors(
         let molecule =
             |v: u32| &list[offsets[v as usize] as usize..offsets[v as usize + 1] as usize];
         let (mol_a, mol_b) = (molecule(a), molecule(b));
-        let mol = if mol_a.len() <= mol_b.len() {
-            mol_a
-        } else {
-            mol_b
-        };
+        // The molecule scanned is that of `v`; `w` is the edge's other end.
+        let from_a = mol_a.len() <= mol_b.len();
+        let (mol, v, w) = if from_a { (mol_a, a, b) } else { (mol_b, b, a) };
         for &s in mol {
             let s = s as usize;
             if s == t {
                 continue;
             }
             let other = tris[s];
-            if !other.contains(&a) {
+            // v is in s (s is in its molecule); its successor and predecessor in s.
+            let p = if other[0] == v {
+                0
+            } else if other[1] == v {
+                1
+            } else {
+                2
+            };
+            let (next, prev) = (other[(p + 1) % 3], other[(p + 2) % 3]);
+            if next != w && prev != w {
                 continue;
             }
-            let Some(j) = other.iter().position(|&x| x == b) else {
-                continue;
-            };
             // Both contain a and b: the same triangle when their third vertices agree.
-            let third = other.iter().copied().find(|&x| x != a && x != b);
-            if third == Some(tri[i]) {
+            let third = if next == w { prev } else { next };
+            if third == tri[i] {
                 return Err(E::DuplicateTriangle {
                     triangle: t.max(s),
                     first: t.min(s),
                 });
             }
-            // In s the edge must run b → a (opposite direction).
-            if other[(j + 2) % 3] == a {
+            // In s the edge must run b → a (opposite direction), not a → b.
+            let same_direction = if from_a { next == b } else { prev == a };
+            if same_direction {
                 return Err(E::NonConforming {
                     triangle: t.max(s),
                     detail: format!(
