@@ -89,8 +89,9 @@ pub enum SmoothingError {
     /// ([`FitError::BeyondPrecision`](super::FitError::BeyondPrecision), with data indices).
     #[error(transparent)]
     BeyondPrecision(super::FitError),
-    /// A data point is unusable ([`FitError::NonFiniteCoordinate`](super::FitError::NonFiniteCoordinate)
-    /// or [`FitError::CoordinateOutOfRange`](super::FitError::CoordinateOutOfRange)).
+    /// A data point's coordinate is not finite or out of range (the
+    /// [`FitError`](super::FitError) of [`check_points`](super::check_points), naming the
+    /// point).
     #[error(transparent)]
     Data(super::FitError),
 }

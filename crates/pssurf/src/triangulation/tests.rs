@@ -90,19 +90,26 @@ fn clockwise_input_is_reoriented() {
     assert_eq!((0..3).filter(|&i| t.neighbor(0, i).is_some()).count(), 1);
 }
 
+/// Vertex 0 at the origin and `n` more on the unit circle, `step` degrees apart, with the
+/// fan of triangles (0, k, k + 1) around the origin (k cyclic).
+fn fan_around_origin(n: usize, step: f64) -> (Vec<Point2<f64>>, Vec<[usize; 3]>) {
+    let mut v = vec![p(0., 0.)];
+    for k in 0..n {
+        let a = (step * k as f64).to_radians();
+        v.push(p(a.cos(), a.sin()));
+    }
+    let fan = (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect();
+    (v, fan)
+}
+
 /// Two triangles on the same side of an edge are found whichever end of the edge has the
 /// smaller molecule (the one the adjacency search scans): a fan of eight triangles around
 /// vertex 0 and one more triangle on edge 0 → 1, or on edge 2 → 0, running the same way.
 #[test]
 fn overlaps_are_found_from_either_end_of_the_edge() {
-    let mut v = vec![p(0., 0.)];
-    for k in 0..8 {
-        let a = (45.0 * k as f64).to_radians();
-        v.push(p(a.cos(), a.sin()));
-    }
+    let (mut v, fan) = fan_around_origin(8, 45.0);
+    assert!(Triangulation::try_new(v.clone(), fan.clone()).is_ok());
     v.push(p(0.6, 0.2));
-    let fan: Vec<[usize; 3]> = (1..=8).map(|k| [0, k, k % 8 + 1]).collect();
-    assert!(Triangulation::try_new(v[..9].to_vec(), fan.clone()).is_ok());
     for extra in [[0, 1, 9], [2, 0, 9]] {
         for first in [true, false] {
             let mut tris = fan.clone();
@@ -124,12 +131,7 @@ fn overlaps_are_found_from_either_end_of_the_edge() {
 fn bad_triangulations_are_rejected_with_the_offending_element() {
     use TriangulationError as E;
     // An interior vertex whose fan winds twice (a pentagram of five 144° triangles).
-    let mut v = vec![p(0., 0.)];
-    for k in 0..5 {
-        let a = (144.0 * k as f64).to_radians();
-        v.push(p(a.cos(), a.sin()));
-    }
-    let tris: Vec<_> = (0..5).map(|k| [0, 1 + k, 1 + (k + 1) % 5]).collect();
+    let (v, tris) = fan_around_origin(5, 144.0);
     let e = Triangulation::try_new(v, tris).unwrap_err();
     assert!(matches!(e, E::NonConforming { .. }), "{e}");
     assert!(e.to_string().contains("around vertex 0"), "{e}");
