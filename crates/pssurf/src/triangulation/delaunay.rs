@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use nalgebra::Point2;
 use spade::{DelaunayTriangulation, Triangulation as _};
 
-use super::{Triangulation, TriangulationError};
+use super::{NO_NEIGHBOR, Triangulation, TriangulationError};
 use crate::geometry::Triangle2;
 
 /// Whether all points lie on one line (or there are fewer than three), decided with exact
@@ -40,35 +40,81 @@ pub(super) fn delaunay(
         .collect();
     let dt = DelaunayTriangulation::<spade::Point2<f64>>::bulk_load_stable(sp)
         .map_err(|_| TriangulationError::CollinearPoints)?;
-    let triangles: Vec<[usize; 3]> = dt
-        .inner_faces()
-        .map(|f| f.vertices().map(|v| v.fix().index()))
-        .collect();
-    let (triangles, peeled) = peel_hull_slivers(&points, triangles);
-    if triangles.is_empty() {
+    let (triangles, neighbors) = triangles_and_neighbors(&dt);
+    let (kept, peeled) = peel_hull_slivers(&points, triangles);
+    if kept.is_empty() {
         return Err(TriangulationError::CollinearPoints);
     }
     // Triangles in the order of a space-filling curve through their centroids: neighbouring
     // triangles get nearby indices, so per-triangle arrays are traversed cache-friendly.
-    let centroids: Vec<Point2<f64>> = triangles
+    let centroids: Vec<Point2<f64>> = kept
         .iter()
         .map(|t| {
             Point2::from((points[t[0]].coords + points[t[1]].coords + points[t[2]].coords) / 3.0)
         })
         .collect();
-    let triangles: Vec<[usize; 3]> = super::morton_order(&centroids)
-        .into_iter()
-        .map(|k| triangles[k as usize])
-        .collect();
-    match Triangulation::try_new(points, triangles.clone()) {
+    let order = super::morton_order(&centroids);
+    let built = if peeled.is_empty() {
+        // Spade's triangles as they are: their neighbours come from its half-edges.
+        let mut new_index = vec![0u32; order.len()];
+        for (k, &old) in order.iter().enumerate() {
+            new_index[old as usize] = k as u32;
+        }
+        let renumber = |n: u32| {
+            if n == NO_NEIGHBOR {
+                n
+            } else {
+                new_index[n as usize]
+            }
+        };
+        let triangles = order.iter().map(|&k| kept[k as usize]).collect();
+        let neighbors = order
+            .iter()
+            .map(|&k| neighbors[k as usize].map(renumber))
+            .collect();
+        super::validate::build_delaunay(points, triangles, neighbors)
+    } else {
+        // Peeling changed the domain: validate it in full.
+        let triangles: Vec<[usize; 3]> = order.iter().map(|&k| kept[k as usize]).collect();
+        Triangulation::try_new(points, triangles)
+    };
+    match built {
         Ok(t) => Ok((t, peeled)),
         Err(TriangulationError::DegenerateTriangle { triangle }) => {
             Err(TriangulationError::NearlyCollinearPoints {
-                points: triangles[triangle],
+                points: kept[order[triangle] as usize],
             })
         }
         Err(e) => Err(e),
     }
+}
+
+/// The inner faces of `dt` as counter-clockwise vertex triples, and the face across each
+/// edge (edge `i` opposite vertex `i`, as in [`Triangulation`]; [`NO_NEIGHBOR`] on the hull),
+/// read from spade's half-edge structure.
+fn triangles_and_neighbors(
+    dt: &DelaunayTriangulation<spade::Point2<f64>>,
+) -> (Vec<[usize; 3]>, Vec<[u32; 3]>) {
+    let mut position = vec![NO_NEIGHBOR; dt.num_all_faces()];
+    for (k, f) in dt.inner_faces().enumerate() {
+        position[f.fix().index()] = k as u32;
+    }
+    dt.inner_faces()
+        .map(|f| {
+            // Edge k of a spade face runs from its vertex k to vertex k + 1.
+            let edges = f.adjacent_edges();
+            let across = |k: usize| {
+                edges[k]
+                    .rev()
+                    .face()
+                    .fix()
+                    .as_inner()
+                    .map_or(NO_NEIGHBOR, |g| position[g.index()])
+            };
+            let vertices = edges.map(|e| e.from().fix().index());
+            (vertices, [across(1), across(2), across(0)])
+        })
+        .unzip()
 }
 
 /// Relative thickness (twice the area over the longest edge squared, about height / length)

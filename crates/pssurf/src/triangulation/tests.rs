@@ -463,3 +463,83 @@ fn duplicates_across_signed_zeros() {
     assert_eq!(duplicate_points(&pts), Some((0, 2)));
     assert_eq!(duplicate_points(&pts[1..]), None);
 }
+
+/// `Triangulation::delaunay` takes its neighbours from spade's half-edges and skips the
+/// adjacency, fan and boundary checks of `try_new` (a Delaunay triangulation passes them by
+/// construction). On random, jittered-grid, lattice, clustered and offset point sets the
+/// result equals what the full validation builds from the same triangles: neighbours,
+/// molecules and boundary flags.
+#[test]
+fn delaunay_neighbours_from_spade_equal_the_validated_ones() {
+    let mut r = rng(41);
+    let mut sets: Vec<Vec<Point2<f64>>> = Vec::new();
+    for n in [3, 4, 10, 200, 3000] {
+        sets.push(
+            (0..n)
+                .map(|_| p(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)))
+                .collect(),
+        );
+    }
+    for delta in [0.0, 1e-12, 1e-9, 1e-6, 1e-3] {
+        let mut grid = Vec::new();
+        for i in 0..25 {
+            for j in 0..25 {
+                // The interior moves; the hull stays a square (no slivers to peel).
+                let inside = if (1..24).contains(&i) && (1..24).contains(&j) {
+                    delta
+                } else {
+                    0.0
+                };
+                let dx = inside * uniform(&mut r, -1.0, 1.0);
+                let dy = inside * uniform(&mut r, -1.0, 1.0);
+                grid.push(p(i as f64 / 24.0 + dx, j as f64 / 24.0 + dy));
+            }
+        }
+        sets.push(grid);
+    }
+    sets.push(
+        (0..500)
+            .map(|k| p((k as f64 * 0.618).fract(), (k as f64 * 0.377).fract()))
+            .collect(),
+    );
+    sets.push(
+        (0..400)
+            .map(|k| {
+                let centre = [(0.0, 0.0), (5.0, 1.0), (2.0, 7.0)][k % 3];
+                p(
+                    centre.0 + 1e-3 * uniform(&mut r, 0.0, 1.0),
+                    centre.1 + 1e-3 * uniform(&mut r, 0.0, 1.0),
+                )
+            })
+            .collect(),
+    );
+    sets.push(
+        (0..400)
+            .map(|_| {
+                p(
+                    1e6 + uniform(&mut r, 0.0, 1.0),
+                    -1e6 + uniform(&mut r, 0.0, 1.0),
+                )
+            })
+            .collect(),
+    );
+    let mut compared = 0;
+    for points in sets {
+        let (fast, peeled) = Triangulation::delaunay_with_peeled(points.clone()).unwrap();
+        if !peeled.is_empty() {
+            continue; // peeled domains already go through `try_new`
+        }
+        compared += 1;
+        let tris: Vec<[usize; 3]> = (0..fast.triangle_count())
+            .map(|t| fast.triangle(t))
+            .collect();
+        let full = Triangulation::try_new(points, tris).unwrap();
+        assert_eq!(fast.neighbors(), full.neighbors());
+        for v in 0..full.vertex_count() {
+            assert_eq!(fast.molecule(v), full.molecule(v));
+            assert_eq!(fast.is_boundary_vertex(v), full.is_boundary_vertex(v));
+        }
+    }
+    // Only the hulls of the lattice and of the three clusters have slivers to peel.
+    assert_eq!(compared, 11, "{compared} of 13 sets compared");
+}

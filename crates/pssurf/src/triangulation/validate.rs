@@ -54,6 +54,77 @@ pub(super) fn build(
     Ok(t)
 }
 
+/// Builds the triangulation of a Delaunay triangulation (see [`super::delaunay`]), whose
+/// coordinates and distinct points were checked before it was made, from its triangles and
+/// the neighbours read from its half-edge structure.
+///
+/// A Delaunay triangulation made with exact predicates is a conforming triangulation of the
+/// convex hull of its points: every edge lies in one triangle or two on opposite sides, no
+/// triangles overlap, each vertex's fan is a disc or a half-disc, and the boundary is one
+/// convex loop. So [`build`]'s checks of the adjacency, the fans and the boundary are left
+/// out (they cost as much as the triangulation itself). The triangles' shapes are still
+/// checked: [`Triangle2::is_degenerate`] ones are reported as in [`build`], and if one of
+/// them is not counter-clockwise by the exact orientation test, the whole input goes
+/// through [`build`], which names what is wrong.
+pub(super) fn build_delaunay(
+    vertices: Vec<Point2<f64>>,
+    triangles: Vec<[usize; 3]>,
+    neighbors: Vec<[u32; 3]>,
+) -> Result<Triangulation, TriangulationError> {
+    let n = vertices.len();
+    if triangles.is_empty() {
+        return Err(E::NoTriangles);
+    }
+    if n >= NO_NEIGHBOR as usize || triangles.len() >= NO_NEIGHBOR as usize {
+        return Err(E::TooLarge(n.max(triangles.len())));
+    }
+    let shape = |tri: &[usize; 3]| {
+        let [a, b, c] = tri.map(|i| vertices[i]);
+        if Triangle2::new(a, b, c).is_degenerate() {
+            Shape::Degenerate
+        } else if orient_exact(a, b, c) > 0.0 {
+            Shape::CounterClockwise
+        } else {
+            Shape::Other
+        }
+    };
+    let first_bad = triangles
+        .par_iter()
+        .with_min_len(4096)
+        .position_first(|tri| tri.iter().any(|&i| i >= n) || shape(tri) != Shape::CounterClockwise);
+    if let Some(t) = first_bad {
+        if triangles[t].iter().all(|&i| i < n) && shape(&triangles[t]) == Shape::Degenerate {
+            return Err(E::DegenerateTriangle { triangle: t });
+        }
+        return build(vertices, triangles);
+    }
+    let tris: Vec<[u32; 3]> = triangles.iter().map(|t| t.map(|i| i as u32)).collect();
+    let (offsets, list) = molecules(n, &tris)?;
+    let mut t = Triangulation {
+        vertices,
+        triangles: tris,
+        neighbors,
+        molecule_offsets: offsets,
+        molecule_list: list,
+        on_boundary: vec![false; n],
+        locator: OnceLock::new(),
+        spatial: OnceLock::new(),
+    };
+    mark_boundary(&mut t);
+    Ok(t)
+}
+
+/// How a triangle of a Delaunay triangulation is shaped, for [`build_delaunay`].
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Shape {
+    /// Thinner than [`Triangle2::is_degenerate`] allows.
+    Degenerate,
+    /// Counter-clockwise by the exact orientation test.
+    CounterClockwise,
+    /// Neither: not what a Delaunay triangulation gives.
+    Other,
+}
+
 pub(super) fn check_duplicates(vertices: &[Point2<f64>]) -> Result<(), E> {
     match super::duplicate_points(vertices) {
         Some((first, second)) => Err(E::DuplicateVertex { first, second }),
