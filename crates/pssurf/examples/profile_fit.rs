@@ -15,6 +15,10 @@ use pssurf::scattered::{
 #[path = "../benches/common.rs"]
 mod common;
 
+// As the CLI and the Python package: freed memory is reused, not returned to the system.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() {
     let [n, repeats] = common::count_args([10_000, 50]);
     let method = if std::env::args().any(|a| a == "--global") {

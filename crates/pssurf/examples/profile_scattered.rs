@@ -9,6 +9,10 @@ use pssurf::triangulation::morton_order;
 #[path = "../benches/common.rs"]
 mod common;
 
+// As the CLI and the Python package: freed memory is reused, not returned to the system.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() {
     let [n, repeats] = common::count_args([10_000, 20]);
     let pts = common::random_points(n, 1);

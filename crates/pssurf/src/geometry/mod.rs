@@ -100,8 +100,11 @@ impl Triangle2 {
     /// True when the area is tiny relative to the squared longest edge
     /// (the triangle is numerically a segment or a point).
     pub fn is_degenerate(&self) -> bool {
-        let h = self.diameter();
-        !(self.det().abs() > 1e-12 * h * h) || !h.is_finite()
+        // The longest edge squared, without square roots.
+        let h2 = (0..3)
+            .map(|i| (self.v[(i + 1) % 3] - self.v[i]).norm_squared())
+            .fold(0.0, f64::max);
+        !(self.det().abs() > 1e-12 * h2) || !h2.is_finite()
     }
 
     /// The affine map to barycentric coordinates, solving (2.1). `None` if degenerate.

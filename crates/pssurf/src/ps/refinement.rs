@@ -40,6 +40,8 @@ impl PsRefinement {
     /// The refinement with split points chosen by `rule`.
     pub fn new(tri: &Triangulation, rule: SplitRule) -> Result<Self, PsError> {
         let z = (0..tri.triangle_count())
+            .into_par_iter()
+            .with_min_len(1024)
             .map(|t| {
                 let g = tri.triangle_geometry(t);
                 match rule {
@@ -148,15 +150,19 @@ impl PsRefinement {
     /// The six sub-triangles of `t` in Δ*, in the order (V_c, R_c, Z), (R_c, V_{c+1}, Z)
     /// for c = 0, 1, 2 (all counter-clockwise).
     pub fn sub_triangles(&self, tri: &Triangulation, t: usize) -> [Triangle2; 6] {
-        let v = tri.triangle(t);
+        let corners = tri.triangle(t).map(|i| tri.vertex(i));
         let z = self.z[t];
+        let l = self.lambda[t];
+        let r: [Point2<f64>; 3] = std::array::from_fn(|c| {
+            let (a, b) = (corners[c], corners[(c + 1) % 3]);
+            Point2::from(a.coords * l[c] + b.coords * (1.0 - l[c]))
+        });
         std::array::from_fn(|k| {
             let c = k / 2;
-            let r = self.edge_point(tri, t, c);
             if k % 2 == 0 {
-                Triangle2::new(tri.vertex(v[c]), r, z)
+                Triangle2::new(corners[c], r[c], z)
             } else {
-                Triangle2::new(r, tri.vertex(v[(c + 1) % 3]), z)
+                Triangle2::new(r[c], corners[(c + 1) % 3], z)
             }
         })
     }
