@@ -309,7 +309,7 @@ impl Legend {
     }
 }
 
-/// The sampling level used for an object (the setting, capped by [`max_level`]).
+/// The sampling level used for an object (the setting, capped by `max_level` so that one object stays under about 4 million triangles).
 /// (0 for a mesh, which is drawn as it is).
 pub fn display_level(o: &SceneObject, settings: &DisplaySettings) -> u32 {
     o.surface()

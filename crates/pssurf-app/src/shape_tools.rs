@@ -30,7 +30,7 @@ pub fn alpha(surface: &Surface, vertex: usize, c: &VertexControl) -> Option<[f64
 }
 
 /// The shape parameters asked for by barycentric coordinates `b` of the pointer in the drawn
-/// triangle: inside, at least [`MIN_PARAMETER`] from the edges, and 0 where V_i lies on an
+/// triangle: inside, at least `MIN_PARAMETER` (1e-3) from the edges, and 0 where V_i lies on an
 /// edge of its PS-triangle (the tangent point cannot leave that edge).
 pub fn target_from_pointer(alpha: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     let mut t: [f64; 3] = std::array::from_fn(|j| {

@@ -4,7 +4,7 @@
 //!
 //! - [`colormap`]: colour maps (the seed's green–black–red with contrast C, perceptual and
 //!   diverging maps, user stops) and colour scales;
-//! - [`plot`]: software rendering to PNG — shaded, curvature plots with a legend, zebra
+//! - [`plot`](mod@plot): software rendering to PNG — shaded, curvature plots with a legend, zebra
 //!   stripes and isophotes, overlays of the triangulation, refinement and control triangles;
 //! - [`domain`]: the domain picture (triangulation, PS refinement, PS-points, PS-triangles) as
 //!   SVG;

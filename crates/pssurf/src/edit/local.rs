@@ -7,7 +7,7 @@
 //!
 //!   E(y) = yᵀ (Q + R) y,
 //!
-//! where Q measures how unevenly the change bends (see [`smoothness`]: the jumps of its Hessian
+//! where Q measures how unevenly the change bends (see `smoothness`: the jumps of its Hessian
 //! across the edges of the PS refinement, and the differences of its Hessians over the core of
 //! the region; per coordinate, PS kinds) and R a small ridge that grows with the distance from
 //! the point (so nearer points move more, and E is positive definite). So the curvature

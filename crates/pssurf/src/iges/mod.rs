@@ -2,7 +2,7 @@
 //! transformation matrices (124), trimmed surfaces (144 with curves on surfaces 142) and
 //! bounded surfaces (143 with boundaries 141), with units converted to millimetres.
 //!
-//! - The fixed format ([`lexer`]): 80-column records, the Start, Global, Directory, Parameter
+//! - The fixed format (`lexer`): 80-column records, the Start, Global, Directory, Parameter
 //!   and Terminate sections, the Global section's delimiters (`1H,` or empty for the default),
 //!   Hollerith strings that contain delimiters, `D` exponents, blank lines, and comments after
 //!   a record delimiter.

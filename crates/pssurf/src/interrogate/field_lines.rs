@@ -14,7 +14,7 @@
 //!   (dir1, dir2 = n × dir1), which does not depend on the sign of dir1. A line stops where
 //!   the surface stops being hyperbolic (at a parabolic line K = 0 the two families meet).
 //!
-//! The curves are integrated by the adaptive Dormand–Prince pair of [`super::ode`] with
+//! The curves are integrated by the adaptive Dormand–Prince pair of the `ode` module with
 //! unit speed in the parameter plane, both ways from the seed, until the domain's boundary,
 //! an umbilic, a parabolic line, a length, a point limit, or the start again (a closed line).
 

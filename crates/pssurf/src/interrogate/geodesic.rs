@@ -9,7 +9,7 @@
 //! with the Christoffel symbols Γᵏᵢⱼ = gᵏˡ (s_ij · s_l) of the first fundamental form g. In
 //! vector form: (u″, v″) = −g⁻¹ (w·s_u, w·s_v) with w = s_uu u′² + 2 s_uv u′v′ + s_vv v′².
 //! Only second derivatives enter, so the equations hold across the pieces of a C¹ surface;
-//! they are integrated by the adaptive Dormand–Prince pair of [`super::ode`], and after every
+//! they are integrated by the adaptive Dormand–Prince pair of the `ode` module, and after every
 //! step (u′, v′) is rescaled to unit speed in space (the equations' first integral).
 //!
 //! The shortest geodesic between two points is found in three stages, because shooting

@@ -5,7 +5,7 @@
 //!
 //! The curve is the zero set of f(u, v) = (s(u, v) − p₀)·m in the parameter domain (m the
 //! plane's normal). It is followed by the predictor–corrector continuation that traces level
-//! lines too ([`super::continuation::Follow`]): a step along the domain tangent (−f_v, f_u)
+//! lines too (`continuation::Follow`): a step along the domain tangent (−f_v, f_u)
 //! of the zero set, sized to move `step` in space, then Newton steps along ∇f back onto f = 0
 //! (to 1e-13 of the surface's size), halving the step when the corrector does not converge,
 //! the tangent turns too much or the point leaves the domain. A section that comes back to

@@ -5,7 +5,7 @@
 //!    crossings; on every segment with a sign change of f − c a root by the modified regula
 //!    falsi (Illinois).
 //! 2. **Tracing** from each seed in both directions by the predictor–corrector of
-//!    [`super::continuation`] (or the seed's derivative-free 4- and 8-point walks,
+//!    `continuation` (or the seed's derivative-free 4- and 8-point walks,
 //!    [`TraceMethod`]), on the piece's own polynomial, until the branch leaves the piece (its
 //!    end solved onto the piece's edge), closes, or gets stuck. Seeds whose hunting segment a
 //!    branch crosses are used up.

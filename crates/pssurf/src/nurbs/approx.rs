@@ -167,7 +167,7 @@ pub fn ups_of_nurbs(s: &NurbsSurface, n: [usize; 2]) -> Result<UpsSurface, Appro
 const MAX_SAMPLES: usize = 4_000_000;
 
 /// The maximum and RMS of |s(p) − S(θ(p))| over the barycentric lattice of 2^level steps per
-/// edge on every piece (fewer on large surfaces, at most [`MAX_SAMPLES`] in all), in parallel
+/// edge on every piece (fewer on large surfaces, at most 4 million (`MAX_SAMPLES`) in all), in parallel
 /// and without storing the samples.
 pub fn deviation(s: &NurbsSurface, ups: &UpsSurface, n: [usize; 2], level: u32) -> (f64, f64) {
     let surface = Surface::from(ups.clone());

@@ -73,14 +73,14 @@ impl<V: Vector> Run<V> {
 
 impl<V: Vector> PsSpline<V> {
     /// The values on the grid `xs` × `ys`, row-major: entry `i · ys.len() + j` is
-    /// s(xs[i], ys[j]), or `outside` where that point lies outside the domain. Agrees with
+    /// s(xs\[i\], ys\[j\]), or `outside` where that point lies outside the domain. Agrees with
     /// [`PsSpline::eval`] to rounding. In parallel, by one of two methods:
     /// - sorted axes with several grid points per triangle: a scan conversion of Δ*, which
     ///   finds where each grid line crosses each triangle and its pieces (no point location);
     ///   it decides inside and outside as `eval` does, up to points within rounding of the
     ///   domain's boundary, and also to points beyond the domain's extreme vertices by less
     ///   than the location tolerance, which it leaves outside;
-    /// - otherwise each row (a line x = xs[i]) is walked once; the points between two
+    /// - otherwise each row (a line x = xs\[i\]) is walked once; the points between two
     ///   crossings of the refinement's edges are evaluated from the same quadratic, and
     ///   inside and outside are decided exactly as `eval` does.
     ///

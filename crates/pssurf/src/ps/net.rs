@@ -149,7 +149,7 @@ impl NetStencil {
     }
 
     /// The transpose of [`apply`](Self::apply): the coefficients `k[c][j]` of the control
-    /// values such that Σ_m `weights[m]` × ordinate_m = Σ_{c,j} `k[c][j]` × ctrl[c][j]
+    /// values such that Σ_m `weights[m]` × ordinate_m = Σ_{c,j} `k[c][j]` × ctrl\[c\]\[j\]
     /// (for linear functionals of the net: integrals, point values, derivatives).
     pub fn transpose(&self, weights: [f64; NET_LEN]) -> [[f64; 3]; 3] {
         let mut wv = weights;

@@ -133,7 +133,7 @@ pub fn ps_triangles(
 
 /// Dierckx's optimal PS-triangle of vertex `i` with PS-points `pts`, made safe to store: the
 /// minimal enclosing triangle enlarged by the first margin that makes it contain every
-/// PS-point exactly — the rounding margin ([`rounding_margin`], at least 1e-13), then the
+/// PS-point exactly — the rounding margin (`rounding_margin`, at least 1e-13), then the
 /// larger [`ENLARGEMENT_MARGINS`] — so a surface built here always loads again (exact
 /// containment implies the load check with [`CONTAINMENT_TOLERANCE`]). When no margin is
 /// enough (nearly coincident or nearly collinear PS-points, where the optimum is numerically

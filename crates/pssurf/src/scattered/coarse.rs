@@ -63,7 +63,7 @@ fn grid_size(lo: Point2<f64>, hi: Point2<f64>, m: usize) -> [usize; 2] {
 /// asks for fewer than the data points, so this bounds direct callers only).
 pub const MAX_COARSE_VERTICES: usize = 1 << 24;
 
-/// A grid of about `m` (at most [`MAX_COARSE_VERTICES`]) vertices over the data's bounding
+/// A grid of about `m` (at most 2²⁴, `MAX_COARSE_VERTICES`) vertices over the data's bounding
 /// box, thickened to at least 1 : 1000, each cell split into two triangles along alternating
 /// diagonals. The box contains every point (its sides are the data's extremes, or lie beyond
 /// them where it was thickened), so every point lies in a triangle. Fails on no points, on

@@ -443,7 +443,7 @@ pub struct Interpolant {
     pub gradients: GradientReport,
 }
 
-/// The Hermite PS-spline through (points[k], values[k]) on their Delaunay triangulation,
+/// The Hermite PS-spline through (points\[k\], values\[k\]) on their Delaunay triangulation,
 /// with the incentre split and optimal PS-triangles, and gradients estimated by `method`.
 ///
 /// Points closer than [`NEAR_DUPLICATE`] × the data's extent are merged first (see

@@ -171,7 +171,7 @@ pub struct Trial {
     pub dof: f64,
 }
 
-/// The smoothing PS-spline on `basis` of the data (points[k], values[k]) with energy
+/// The smoothing PS-spline on `basis` of the data (points\[k\], values\[k\]) with energy
 /// `energy` and smoothing `smoothing` (module docs); `on_trial` hears of every λ tried.
 pub fn smoothing_fit(
     basis: Arc<PsBasis>,

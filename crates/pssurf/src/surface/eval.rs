@@ -28,7 +28,7 @@ pub(crate) fn for_each_chunk<T: Send>(
         .for_each(|(pts, rows)| f(pts, rows));
 }
 
-/// Jets at many parameter points, in parallel on all cores (see [`for_each_chunk`]).
+/// Jets at many parameter points, in parallel on all cores (see `for_each_chunk`).
 pub fn jets<S: ParametricSurface + ?Sized>(
     surface: &S,
     points: &[Point2<f64>],

@@ -120,7 +120,7 @@ pub enum PieceFrame {
         /// Its barycentric map.
         map: BaryMap,
     },
-    /// A rectangle: s = (u − min.x)·scale[0], t = (v − min.y)·scale[1].
+    /// A rectangle: s = (u − min.x)·scale\[0\], t = (v − min.y)·scale\[1\].
     Rectangle {
         /// The rectangle.
         rectangle: Rectangle,
