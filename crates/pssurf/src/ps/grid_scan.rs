@@ -21,7 +21,9 @@
 //! λ(y) = λ₀ + (y − y₀) w, so with the quadratic form Q of its Bézier ordinates (s = λᵀQλ,
 //! the quadratic patch of thesis (2.18)) s = λ₀ᵀQλ₀ + 2 (y − y₀) λ₀ᵀQw + (y − y₀)² wᵀQw. As
 //! (y − y₀) w is the change of λ inside the piece (each component at most 1 in size), this is
-//! as stable as de Casteljau's algorithm.
+//! as stable as de Casteljau's algorithm. Only the first piece along a line needs λ₀: the
+//! spline is C¹ across the rays Z P_k, so each further piece starts with the value and slope
+//! of the one below at their ray, and only its wᵀQw differs.
 
 use std::ops::Range;
 
@@ -188,11 +190,35 @@ struct LineQuadratic<V> {
 }
 
 impl<V: Vector> LineQuadratic<V> {
+    /// Zero everywhere (a placeholder for degenerate pieces).
+    fn zero() -> Self {
+        LineQuadratic {
+            y0: 0.0,
+            a0: V::zero(),
+            a1: V::zero(),
+            a2: V::zero(),
+        }
+    }
+
     /// The value at height y.
     #[inline(always)]
     fn at(&self, y: f64) -> V {
         let d = y - self.y0;
         self.a0 + (self.a1 + self.a2 * d) * d
+    }
+
+    /// The next piece up the line, entered at height y1 on the ray it shares with this one:
+    /// the same value and slope there (the spline is C¹ across the ray), its own curvature
+    /// `a2` (wᵀQw of that piece).
+    #[inline(always)]
+    fn continued(&self, y1: f64, a2: V) -> Self {
+        let d = y1 - self.y0;
+        LineQuadratic {
+            y0: y1,
+            a0: self.a0 + (self.a1 + self.a2 * d) * d,
+            a1: self.a1 + self.a2 * (2.0 * d),
+            a2,
+        }
     }
 }
 
@@ -492,17 +518,30 @@ fn scan_line<V: Vector>(cell: &Cell<'_, V>, grid: &Grid<'_>, i: usize, row: &mut
         below = below.max(cell.rays[ray(m)].y_at(x).min(hi));
         *top = below;
     }
-    // Each piece about the height where the line enters it.
-    let mut lines = [None; 6];
+    // Each piece about the height where the line enters it. The spline is C¹ across the
+    // rays inside a triangle, so a piece's value and slope there are those of the piece
+    // below: only the first piece (or one after a degenerate piece) needs its barycentric
+    // coordinates.
+    // Bit m of `present`: piece m has its quadratic in lines[m] (not degenerate).
+    let mut lines = [LineQuadratic::zero(); 6];
+    let mut present = 0u32;
     let mut bottom = entry.min(exit);
+    let mut below: Option<LineQuadratic<V>> = None;
     for (m, line) in lines.iter_mut().enumerate().take(len + 1) {
-        *line = cell.piece(piece(m)).map(|p| p.along(x, bottom));
+        below = cell.piece(piece(m)).map(|p| match below {
+            Some(q) => q.continued(bottom, p.wqw),
+            None => p.along(x, bottom),
+        });
+        if let Some(q) = below {
+            *line = q;
+            present |= 1 << m;
+        }
         bottom = tops[m.min(4)];
     }
     for (o, &y) in row[start..end.max(start)].iter_mut().zip(&ys[start..]) {
         let m = tops.iter().map(|&t| (t < y) as usize).sum::<usize>();
-        if let Some(line) = &lines[m] {
-            *o = line.at(y);
+        if present & (1 << m) != 0 {
+            *o = lines[m].at(y);
         }
     }
     if cell.on_boundary {
