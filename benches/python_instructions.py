@@ -24,6 +24,8 @@ import pssurf
 
 def main():
     what, repeats = sys.argv[1], int(sys.argv[2])
+    if what not in ("fit", "grid"):
+        sys.exit(f"unknown job {what!r}: fit or grid")
     rng = np.random.default_rng(2026)
     pts = rng.random((10_000, 2))
     z = np.sin(3 * pts[:, 0]) * np.cos(2 * pts[:, 1])
@@ -32,10 +34,8 @@ def main():
     for _ in range(repeats):
         if what == "fit":
             pssurf.PsInterpolator(pts, z)
-        elif what == "grid":
-            f(axis, axis, grid=True)
         else:
-            sys.exit(f"unknown job {what!r}: fit or grid")
+            f(axis, axis, grid=True)
 
 
 if __name__ == "__main__":

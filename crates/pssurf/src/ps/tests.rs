@@ -69,7 +69,7 @@ fn sample_points(
 }
 
 /// Random Hermite data (values and gradients in [−1, 1]) for n vertices.
-fn random_hermite(r: &mut ChaCha8Rng, n: usize) -> Vec<Hermite<f64>> {
+pub(super) fn random_hermite(r: &mut ChaCha8Rng, n: usize) -> Vec<Hermite<f64>> {
     (0..n)
         .map(|_| Hermite {
             value: uniform(r, -1.0, 1.0),
