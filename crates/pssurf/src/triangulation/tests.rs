@@ -543,3 +543,41 @@ fn delaunay_neighbours_from_spade_equal_the_validated_ones() {
     // Only the hulls of the lattice and of the three clusters have slivers to peel.
     assert_eq!(compared, 11, "{compared} of 13 sets compared");
 }
+
+/// `validate::build_delaunay` keeps the neighbours it is given when every triangle is
+/// counter-clockwise and not degenerate (that is what makes it fast: `delaunay` gives it
+/// spade's), reports a degenerate triangle as `try_new` does, and hands triangles that are
+/// not counter-clockwise to the full validation, which finds the neighbours itself.
+#[test]
+fn delaunay_build_trusts_its_neighbours_and_falls_back_to_full_validation() {
+    let v = vec![p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0), p(1.0, 1.0)];
+    let ccw = vec![[0, 1, 2], [1, 3, 2]];
+    let none = vec![[NO_NEIGHBOR; 3]; 2];
+    let full = Triangulation::try_new(v.clone(), ccw.clone()).unwrap();
+    assert_ne!(full.neighbors(), &none[..]);
+    // The fast path: the neighbours as given.
+    let fast = validate::build_delaunay(v.clone(), ccw.clone(), none.clone()).unwrap();
+    assert_eq!(fast.neighbors(), &none[..]);
+    let fast = validate::build_delaunay(v.clone(), ccw, full.neighbors().to_vec()).unwrap();
+    assert_eq!(fast.neighbors(), full.neighbors());
+    // Clockwise triangles: the full validation orients them and finds their neighbours.
+    let cw = vec![[0, 2, 1], [1, 2, 3]];
+    let fallback = validate::build_delaunay(v.clone(), cw.clone(), none).unwrap();
+    assert_eq!(
+        fallback.neighbors(),
+        Triangulation::try_new(v, cw).unwrap().neighbors()
+    );
+    assert_ne!(fallback.neighbors(), &[[NO_NEIGHBOR; 3]; 2][..]);
+    // A degenerate triangle is named as the full validation names it.
+    let flat = vec![p(0.0, 0.0), p(1.0, 0.0), p(0.5, 1e-13), p(0.5, 1.0)];
+    let tris = vec![[0, 2, 3], [0, 1, 2], [1, 3, 2]];
+    let e = validate::build_delaunay(flat.clone(), tris.clone(), vec![[NO_NEIGHBOR; 3]; 3]);
+    assert_eq!(
+        e.unwrap_err(),
+        TriangulationError::DegenerateTriangle { triangle: 1 }
+    );
+    assert_eq!(
+        Triangulation::try_new(flat, tris).unwrap_err(),
+        TriangulationError::DegenerateTriangle { triangle: 1 }
+    );
+}
