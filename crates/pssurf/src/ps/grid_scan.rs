@@ -225,7 +225,7 @@ impl<V: Vector> LineQuadratic<V> {
         let d = y1 - self.y0;
         LineQuadratic {
             y0: y1,
-            a0: self.a0 + (self.a1 + self.a2 * d) * d,
+            a0: self.at(y1),
             a1: self.a1 + self.a2 * (2.0 * d),
             a2,
         }
@@ -535,10 +535,9 @@ fn scan_line<V: Vector>(cell: &Cell<'_, V>, grid: &Grid<'_>, i: usize, row: &mut
         below = below.max(cell.rays[ray(m)].y_at(x).min(hi));
         *top = below;
     }
-    // Each piece about the height where the line enters it. The spline is C¹ across the
-    // rays inside a triangle, so a piece's value and slope there are those of the piece
-    // below: only the first piece (or one after a degenerate piece) needs its barycentric
-    // coordinates.
+    // Each piece about the height where the line enters it: its value and slope carried
+    // from the piece below (C¹ across their ray) or, for the first piece, after a
+    // degenerate one and beyond CARRY_RATIO, from its barycentric coordinates there.
     // Bit m of `present`: piece m has its quadratic in lines[m] (not degenerate).
     let mut lines = [LineQuadratic::zero(); 6];
     let mut present = 0u32;
@@ -621,14 +620,13 @@ fn accepts_near_edge(basis: &PsBasis, t: usize, e: usize, p: Point2<f64>) -> boo
 
 #[cfg(test)]
 mod tests {
+    use std::sync::Arc;
+
     use nalgebra::Point2;
 
     use super::Axis;
-    use crate::ps::PsSpline;
-    use std::sync::Arc;
-
     use crate::ps::tests::{assert_grid_agrees, random_hermite, random_hermite_spline};
-    use crate::ps::{PsBasis, PsRefinement, PsTriangleChoice};
+    use crate::ps::{PsBasis, PsRefinement, PsSpline, PsTriangleChoice};
     use crate::test_util::{rng, uniform};
     use crate::triangulation::Triangulation;
 

@@ -142,9 +142,11 @@ impl PsRefinement {
     /// The edge point R_c of edge `c` of triangle `t`.
     pub fn edge_point(&self, tri: &Triangulation, t: usize, c: usize) -> Point2<f64> {
         let v = tri.triangle(t);
-        let l = self.lambda[t][c];
-        let (a, b) = (tri.vertex(v[c]), tri.vertex(v[(c + 1) % 3]));
-        Point2::from(a.coords * l + b.coords * (1.0 - l))
+        between(
+            tri.vertex(v[c]),
+            tri.vertex(v[(c + 1) % 3]),
+            self.lambda[t][c],
+        )
     }
 
     /// The six sub-triangles of `t` in Δ*, in the order (V_c, R_c, Z), (R_c, V_{c+1}, Z)
@@ -153,10 +155,8 @@ impl PsRefinement {
         let corners = tri.triangle(t).map(|i| tri.vertex(i));
         let z = self.z[t];
         let l = self.lambda[t];
-        let r: [Point2<f64>; 3] = std::array::from_fn(|c| {
-            let (a, b) = (corners[c], corners[(c + 1) % 3]);
-            Point2::from(a.coords * l[c] + b.coords * (1.0 - l[c]))
-        });
+        let r: [Point2<f64>; 3] =
+            std::array::from_fn(|c| between(corners[c], corners[(c + 1) % 3], l[c]));
         std::array::from_fn(|k| {
             let c = k / 2;
             if k % 2 == 0 {
@@ -166,6 +166,13 @@ impl PsRefinement {
             }
         })
     }
+}
+
+/// The point λ a + (1 − λ) b: an edge point, computed by this one expression wherever it is
+/// needed so that every use gets the same bits.
+#[inline]
+fn between(a: Point2<f64>, b: Point2<f64>, l: f64) -> Point2<f64> {
+    Point2::from(a.coords * l + b.coords * (1.0 - l))
 }
 
 /// Where the segment joining the split points of triangle `t` and its neighbour across edge

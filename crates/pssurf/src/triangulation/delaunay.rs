@@ -56,22 +56,7 @@ pub(super) fn delaunay(
     let order = super::morton_order(&centroids);
     let built = if peeled.is_empty() {
         // Spade's triangles as they are: their neighbours come from its half-edges.
-        let mut new_index = vec![0u32; order.len()];
-        for (k, &old) in order.iter().enumerate() {
-            new_index[old as usize] = k as u32;
-        }
-        let renumber = |n: u32| {
-            if n == NO_NEIGHBOR {
-                n
-            } else {
-                new_index[n as usize]
-            }
-        };
-        let triangles = order.iter().map(|&k| kept[k as usize]).collect();
-        let neighbors = order
-            .iter()
-            .map(|&k| neighbors[k as usize].map(renumber))
-            .collect();
+        let (triangles, neighbors) = reordered(&order, &kept, &neighbors);
         super::validate::build_delaunay(points, triangles, neighbors)
     } else {
         // Peeling changed the domain: validate it in full.
@@ -87,6 +72,30 @@ pub(super) fn delaunay(
         }
         Err(e) => Err(e),
     }
+}
+
+/// The triangles in the order `order` (new index k: old index `order[k]`), with their
+/// neighbour indices renumbered to match.
+fn reordered(
+    order: &[u32],
+    triangles: &[[usize; 3]],
+    neighbors: &[[u32; 3]],
+) -> (Vec<[usize; 3]>, Vec<[u32; 3]>) {
+    let mut new_index = vec![0u32; order.len()];
+    for (k, &old) in order.iter().enumerate() {
+        new_index[old as usize] = k as u32;
+    }
+    let renumber = |n: u32| {
+        if n == NO_NEIGHBOR {
+            n
+        } else {
+            new_index[n as usize]
+        }
+    };
+    order
+        .iter()
+        .map(|&k| (triangles[k as usize], neighbors[k as usize].map(renumber)))
+        .unzip()
 }
 
 /// The inner faces of `dt` as counter-clockwise vertex triples, and the face across each

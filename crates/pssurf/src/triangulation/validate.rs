@@ -32,17 +32,7 @@ pub(super) fn build(
     orient_counter_clockwise(&vertices, &mut tris)?;
     let (offsets, list) = molecules(n, &tris)?;
     let neighbors = adjacency(&tris, &offsets, &list)?;
-    let mut t = Triangulation {
-        vertices,
-        triangles: tris,
-        neighbors,
-        molecule_offsets: offsets,
-        molecule_list: list,
-        on_boundary: vec![false; n],
-        locator: OnceLock::new(),
-        spatial: OnceLock::new(),
-    };
-    mark_boundary(&mut t);
+    let t = assemble(vertices, tris, neighbors, (offsets, list));
     let bow_tie = check_vertex_fans(&t)?;
     check_boundary_crossings(&t)?;
     // A bow-tie is reported after the boundary contacts, which name the cause more exactly
@@ -99,19 +89,30 @@ pub(super) fn build_delaunay(
         return build(vertices, triangles);
     }
     let tris: Vec<[u32; 3]> = triangles.iter().map(|t| t.map(|i| i as u32)).collect();
-    let (offsets, list) = molecules(n, &tris)?;
+    let molecules = molecules(n, &tris)?;
+    Ok(assemble(vertices, tris, neighbors, molecules))
+}
+
+/// The triangulation of checked parts, its boundary vertices marked from the neighbours.
+fn assemble(
+    vertices: Vec<Point2<f64>>,
+    triangles: Vec<[u32; 3]>,
+    neighbors: Vec<[u32; 3]>,
+    (molecule_offsets, molecule_list): (Vec<u32>, Vec<u32>),
+) -> Triangulation {
+    let n = vertices.len();
     let mut t = Triangulation {
         vertices,
-        triangles: tris,
+        triangles,
         neighbors,
-        molecule_offsets: offsets,
-        molecule_list: list,
+        molecule_offsets,
+        molecule_list,
         on_boundary: vec![false; n],
         locator: OnceLock::new(),
         spatial: OnceLock::new(),
     };
     mark_boundary(&mut t);
-    Ok(t)
+    t
 }
 
 /// How a triangle of a Delaunay triangulation is shaped, for [`build_delaunay`].
