@@ -209,6 +209,15 @@ pub enum ExprError {
         /// The y coordinate of the point.
         y: f64,
     },
+    /// The value or gradient is so large at a point that a control value of the surface
+    /// would lie beyond ±1e60.
+    #[error("the formula's value or gradient at ({}, {}) gives control values beyond ±1e60", crate::text::Short(*x), crate::text::Short(*y))]
+    TooLarge {
+        /// The x coordinate of the point.
+        x: f64,
+        /// The y coordinate of the point.
+        y: f64,
+    },
 }
 
 /// A height function z = f(x, y) from a formula.

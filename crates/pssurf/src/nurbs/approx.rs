@@ -50,6 +50,16 @@ pub enum ApproxError {
         /// The deviation they reached.
         reached: f64,
     },
+    /// The interpolant's control values would lie beyond ±1e60: the surface's derivatives
+    /// are that large (for instance on a parameter domain of almost no width).
+    #[error(
+        "the NURBS surface's derivatives on its parameter domain [{}, {}] × [{}, {}] are too large: the UPS approximation would have control values beyond ±1e60",
+        crate::text::Short(domain[0]), crate::text::Short(domain[1]), crate::text::Short(domain[2]), crate::text::Short(domain[3])
+    )]
+    TooLarge {
+        /// [u0, u1, v0, v1].
+        domain: [f64; 4],
+    },
 }
 
 /// The most triangles along a side of Ω (a UPS surface of 40,000 vertices).
@@ -160,7 +170,13 @@ pub fn ups_of_nurbs(s: &NurbsSurface, n: [usize; 2]) -> Result<UpsSurface, Appro
             dy: j.dx * theta.a12 + j.dy * theta.a22,
         }
     });
-    Ok(UpsSurface::Parametric(ups))
+    let ups = UpsSurface::Parametric(ups);
+    match ups.first_unusable_vertex() {
+        Some(_) => Err(ApproxError::TooLarge {
+            domain: [lo.x, hi.x, lo.y, hi.y],
+        }),
+        None => Ok(ups),
+    }
 }
 
 /// The most deviation samples (the level is lowered for large surfaces to stay under it).

@@ -515,6 +515,20 @@ fn the_ups_approximation_converges_with_third_order_and_meets_a_tolerance() {
         },
     );
     assert!(matches!(e, Err(ApproxError::Tolerance(_))));
+    // A valid surface on a parameter domain of (subnormal) width 1e-320 has derivatives
+    // beyond any control value: refused with the domain named, not turned into a UPS
+    // surface that cannot be evaluated or saved.
+    let thin = NurbsSurface::try_new(
+        [1, 1],
+        [vec![0.0, 0.0, 1e-320, 1e-320], vec![0.0, 0.0, 1.0, 1.0]],
+        [2, 2],
+        bilinear.points().to_vec(),
+        None,
+    )
+    .unwrap();
+    let e = approx::ups_of_nurbs(&thin, [2, 2]).unwrap_err();
+    assert!(matches!(e, ApproxError::TooLarge { .. }), "{e}");
+    assert!(e.to_string().contains("[0, 1e-320]"), "{e}");
 }
 
 /// The twisted cubic (t, t², t³) on [0, 1] as a cubic Bézier curve, rational with weights c^i

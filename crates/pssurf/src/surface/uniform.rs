@@ -63,6 +63,25 @@ impl UpsSurface {
         matches!(self, UpsSurface::Rational(_))
     }
 
+    /// The position of the first vertex (in slot order) with a control value that is not a
+    /// finite number within ±[`crate::limits::MAX_VALUE`] or a weight out of range, which
+    /// the general form and the file loader would refuse; `None` when every one is usable.
+    /// Constructors from functions ([`crate::ups::graph_surface_from_formula`], the NURBS
+    /// approximation) check their result with it.
+    pub fn first_unusable_vertex(&self) -> Option<Point2<f64>> {
+        use crate::limits::{value_ok, weight_ok};
+        let point_ok = |p: &Vector3<f64>| p.iter().all(|&x| value_ok(x));
+        let grid = self.grid();
+        let bad = grid.real_slots().into_iter().find(|&s| match self {
+            UpsSurface::Functional(u) => !u.blocks()[s].iter().all(|&z| value_ok(z)),
+            UpsSurface::Parametric(u) => !u.blocks()[s].iter().all(point_ok),
+            UpsSurface::Rational(u) => !u.blocks()[s]
+                .iter()
+                .all(|w| point_ok(&w.point) && weight_ok(w.weight)),
+        })?;
+        Some(grid.lattice().point(grid.lattice_point(bad)))
+    }
+
     /// The same surface as a general PS surface (functional, parametric or NURPS).
     pub fn to_general(&self) -> Result<Surface, UpsError> {
         Ok(match self {

@@ -50,7 +50,7 @@ pub fn graph_surface(
 }
 
 /// [`graph_surface`] of a formula; an error names the first vertex where the formula has no
-/// finite value or gradient.
+/// finite value or gradient, or where they make a control value larger than ±1e60.
 #[cfg(feature = "expr")]
 pub fn graph_surface_from_formula(
     grid: UpsGrid,
@@ -62,7 +62,7 @@ pub fn graph_surface_from_formula(
         let p = lattice.point(grid.lattice_point(s));
         formula.eval(p.x, p.y)?;
     }
-    Ok(graph_surface(grid, kind, |p| {
+    let surface = graph_surface(grid, kind, |p| {
         let d = formula
             .eval(p.x, p.y)
             .expect("checked at every vertex above");
@@ -71,7 +71,11 @@ pub fn graph_surface_from_formula(
             dx: d.dx,
             dy: d.dy,
         }
-    }))
+    });
+    match surface.first_unusable_vertex() {
+        Some(p) => Err(ExprError::TooLarge { x: p.x, y: p.y }),
+        None => Ok(surface),
+    }
 }
 
 #[cfg(test)]
@@ -145,9 +149,16 @@ mod tests {
             }
             let bad = HeightFunction::parse("ln(x - 100)").unwrap();
             assert!(matches!(
-                graph_surface_from_formula(g, GraphKind::Parametric, &bad),
+                graph_surface_from_formula(g.clone(), GraphKind::Parametric, &bad),
                 Err(ExprError::NotFinite { .. })
             ));
+            // Finite but beyond the control values a surface may hold (±1e60): refused
+            // with the first vertex named, for every kind.
+            let huge = HeightFunction::parse("10^61 + x").unwrap();
+            for kind in KINDS {
+                let e = graph_surface_from_formula(g.clone(), kind, &huge).unwrap_err();
+                assert!(matches!(e, ExprError::TooLarge { .. }), "{kind:?}: {e}");
+            }
         }
     }
 }
