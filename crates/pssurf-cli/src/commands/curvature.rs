@@ -1,6 +1,7 @@
 //! `pssurf curvature`: exact curvature at given parameters or on a grid.
 
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use anyhow::Result;
 use pssurf::interrogate::Curvature;
@@ -35,6 +36,7 @@ pub fn run(args: &CurvatureArgs) -> Result<()> {
         .points
         .resolve(surface.domain_bounds(), surface.kind().is_functional())?;
     let columns: Vec<String> = COLUMNS.map(String::from).to_vec();
+    let singular = AtomicUsize::new(0);
     evaluate_table(
         &surface,
         &pts,
@@ -50,9 +52,20 @@ pub fn run(args: &CurvatureArgs) -> Result<()> {
                     row[8..11].copy_from_slice(c.dir1.as_slice());
                     row[11..14].copy_from_slice(c.dir2.as_slice());
                 }
-                // Undefined at a singular point (s_u × s_v = 0).
-                Err(_) => row[3..14].fill(f64::NAN),
+                // Undefined at a singular point (s_u × s_v = 0), and said so below.
+                Err(_) => {
+                    singular.fetch_add(1, Ordering::Relaxed);
+                    row[3..14].fill(f64::NAN);
+                }
             }
         },
-    )
+    )?;
+    let singular = singular.into_inner();
+    if singular > 0 {
+        eprintln!(
+            "warning: the surface is singular (s_u × s_v vanishes to working precision) at {singular} of the {} points: curvature is undefined there, and their columns K … d2z hold nan",
+            pts.len()
+        );
+    }
+    Ok(())
 }

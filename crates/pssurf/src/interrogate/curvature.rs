@@ -52,6 +52,9 @@ pub struct FundamentalForms {
     pub n: f64,
     /// The unit normal n = s_u × s_v / |s_u × s_v|.
     pub normal: Vector3<f64>,
+    /// EG − F², computed as |s_u × s_v|² (Lagrange's identity): the difference EG − F²
+    /// itself cancels to nothing on steep graphs (|s_u|, |s_v| ≫ 1 nearly parallel).
+    pub det: f64,
 }
 
 impl FundamentalForms {
@@ -77,12 +80,13 @@ impl FundamentalForms {
             m: normal.dot(&j.dxy),
             n: normal.dot(&j.dyy),
             normal,
+            det: c2,
         })
     }
 
     /// EG − F² = |s_u × s_v|², the area element squared.
     pub fn det_first(&self) -> f64 {
-        self.e * self.g - self.f * self.f
+        self.det
     }
 
     /// The Gaussian curvature K (20).

@@ -705,3 +705,49 @@ fn principal_curvatures_from_gaussian_and_mean_are_the_roots() {
     let p = PrincipalCurvatures::from_gaussian_mean(0.1 * 0.1 + 1e-18, 0.1);
     assert_eq!((p.k1, p.k2), (0.1, 0.1));
 }
+
+/// Steep graphs: on z = s (a x² + b xy + c y²) with s up to 1e12 the tangents s_u, s_v are
+/// nearly parallel, and EG − F² computed as a difference cancels to nothing (K and H came
+/// out infinite at s = 1e9). With EG − F² = |s_u × s_v|² they match the graph's closed forms
+/// K = (f_xx f_yy − f_xy²)/W⁴, H = ((1 + f_y²) f_xx − 2 f_x f_y f_xy + (1 + f_x²) f_yy)/(2W³),
+/// W² = 1 + f_x² + f_y², to 1e-12 relative (|H| relative to the largest term).
+#[test]
+fn curvature_of_steep_graphs_matches_the_closed_forms() {
+    let mut r = rng(93);
+    for scale in [1.0, 1e3, 1e6, 1e9, 1e12] {
+        for _ in 0..50 {
+            let [a, b, c] = [0; 3].map(|_| uniform(&mut r, 0.2, 1.5));
+            let (x, y) = (uniform(&mut r, 0.1, 1.0), uniform(&mut r, 0.1, 1.0));
+            let (fx, fy) = (scale * (2.0 * a * x + b * y), scale * (b * x + 2.0 * c * y));
+            let (fxx, fxy, fyy) = (2.0 * a * scale, b * scale, 2.0 * c * scale);
+            let jet = Jet {
+                value: Vector3::new(x, y, scale * (a * x * x + b * x * y + c * y * y)),
+                dx: Vector3::new(1.0, 0.0, fx),
+                dy: Vector3::new(0.0, 1.0, fy),
+                dxx: Vector3::new(0.0, 0.0, fxx),
+                dxy: Vector3::new(0.0, 0.0, fxy),
+                dyy: Vector3::new(0.0, 0.0, fyy),
+            };
+            let w2 = 1.0 + fx * fx + fy * fy;
+            let k = (fxx * fyy - fxy * fxy) / (w2 * w2);
+            let terms = [
+                (1.0 + fy * fy) * fxx,
+                2.0 * fx * fy * fxy,
+                (1.0 + fx * fx) * fyy,
+            ];
+            let h = (terms[0] - terms[1] + terms[2]) / (2.0 * w2 * w2.sqrt());
+            let h_size = terms.iter().map(|t| t.abs()).sum::<f64>() / (2.0 * w2 * w2.sqrt());
+            let c = Curvature::from_jet(&jet).expect("a graph is regular");
+            assert!(
+                (c.gaussian - k).abs() <= 1e-12 * k.abs(),
+                "s = {scale}: K {} vs {k}",
+                c.gaussian
+            );
+            assert!(
+                (c.mean - h).abs() <= 1e-12 * h_size,
+                "s = {scale}: H {} vs {h}",
+                c.mean
+            );
+        }
+    }
+}
