@@ -134,6 +134,32 @@ fn the_comb_of_an_arc_is_constant() {
     // The curve (black) and the envelope (orange) are drawn.
     assert!(img.pixels().any(|p| p.0 == [0, 0, 0]));
     assert!(img.pixels().any(|p| p.0 == [224, 110, 0]));
+    // A line along z has no picture in the (x, y) plane: refused for SVG and PNG (they were
+    // written full of NaN), its straight comb written as CSV. A curve whose control points
+    // coincide has no defined curvature anywhere: refused, no file.
+    let along_z = s(&write(
+        d.path(),
+        "z.json",
+        r#"{"format":"pssurf","version":1,"kind":"curve","curve":{"degree":2,"points":[[0,0,0],[0,0,1],[0,0,3]]}}"#,
+    ));
+    for ext in ["svg", "png"] {
+        let out = d.path().join(format!("z.{ext}"));
+        let msg = fails(&["curve", &along_z, "--comb", "-o", &s(&out)]);
+        assert!(msg.contains("(x, y) plane") && !out.exists(), "{msg}");
+    }
+    let z_csv = d.path().join("z.csv");
+    ok_report(&["curve", &along_z, "--comb", "-o", &s(&z_csv)]);
+    assert!(!std::fs::read_to_string(&z_csv).unwrap().contains("NaN"));
+    let point = s(&write(
+        d.path(),
+        "point.json",
+        r#"{"format":"pssurf","version":1,"kind":"curve","curve":{"degree":2,"points":[[1,1,1],[1,1,1],[1,1,1]]}}"#,
+    ));
+    for ext in ["svg", "csv"] {
+        let out = d.path().join(format!("point.{ext}"));
+        let msg = fails(&["curve", &point, "--comb", "-o", &s(&out)]);
+        assert!(msg.contains("curvature") && !out.exists(), "{msg}");
+    }
 }
 
 /// `--comb` on polylines: points on circles (a polygon, and two traced curves in the format

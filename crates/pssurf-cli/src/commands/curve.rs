@@ -119,15 +119,32 @@ pub fn run(args: &CurveArgs) -> Result<()> {
 
 /// The combs to draw: one for a curve file, one per polyline of a CSV file, computed at
 /// `scale` (0 for teeth of no length).
+/// Teeth where the curvature is undefined (the curve stops: zero speed, e.g. coinciding
+/// control points) are left out.
 fn combs_at(args: &CurveArgs, scale: f64) -> Result<Vec<Vec<CombTooth>>> {
-    if is_csv(&args.input) {
+    let mut combs = if is_csv(&args.input) {
         let polylines = read_polylines(&args.input)?;
-        return Ok((polylines.iter())
+        (polylines.iter())
             .map(|p| polyline_comb(p, args.closed, scale))
-            .collect());
+            .collect()
+    } else {
+        let curve = crate::budget::load_curve(&args.input)?;
+        vec![curvature_comb(&curve, args.samples as usize, scale)]
+    };
+    for comb in &mut combs {
+        comb.retain(|t| t.curvature.is_finite());
+    }
+    Ok(combs)
+}
+
+/// The number of teeth [`combs_at`] leaves out (curvature undefined).
+fn undefined_teeth(args: &CurveArgs) -> Result<usize> {
+    if is_csv(&args.input) {
+        return Ok(0); // polyline_comb skips repeated points itself
     }
     let curve = crate::budget::load_curve(&args.input)?;
-    Ok(vec![curvature_comb(&curve, args.samples as usize, scale)])
+    let all = curvature_comb(&curve, args.samples as usize, 0.0);
+    Ok(all.iter().filter(|t| !t.curvature.is_finite()).count())
 }
 
 /// Whether a path names a CSV file.
@@ -173,8 +190,14 @@ fn comb(args: &CurveArgs) -> Result<()> {
     let probe = combs_at(args, 0.0)?;
     if probe.iter().all(|c| c.is_empty()) {
         bail!(
-            "{}: no curve with three distinct points to draw a comb of",
+            "{}: no curve with three distinct points (or a defined curvature) to draw a comb of",
             args.input.display()
+        );
+    }
+    let undefined = undefined_teeth(args)?;
+    if undefined > 0 {
+        eprintln!(
+            "warning: the curve stops (zero speed) at {undefined} sample points: curvature is undefined there, and those teeth are left out"
         );
     }
     let (lo, hi) = extent(probe.iter().flatten().map(|t| t.point));
@@ -199,6 +222,12 @@ fn comb(args: &CurveArgs) -> Result<()> {
         .map(str::to_ascii_lowercase)
         .unwrap_or_default();
     let several = combs.len() > 1;
+    if matches!(ext.as_str(), "png" | "svg") && !CombFrame::of(&combs).k.is_finite() {
+        bail!(
+            "{}: the comb has no extent in the (x, y) plane that a picture shows (the curve runs along z); write a .csv instead",
+            args.output.display()
+        );
+    }
     match ext.as_str() {
         "png" => {
             let mut png = Vec::new();
