@@ -173,7 +173,16 @@ pub fn geodesic<S: ParametricSurface + ?Sized>(
     }
     let d = direction / speed;
     let y0 = State::<4>::new(start.x, start.y, d.x, d.y);
-    Ok(integrate(surface, y0, j.value, length, opts, cursor))
+    // Steps are bounded by the length asked for, or by the surface's size when that is
+    // smaller: a length far beyond the surface (to run to the boundary) must not make the
+    // smallest step longer than the way left to the boundary.
+    let size = domain_diameter(surface) * j.dx.norm().max(j.dy.norm());
+    let scale = if size > 0.0 && size.is_finite() {
+        length.min(size)
+    } else {
+        length.min(size)
+    };
+    Ok(integrate(surface, y0, j.value, length, scale, opts, cursor))
 }
 
 fn integrate<S: ParametricSurface + ?Sized>(
@@ -181,14 +190,15 @@ fn integrate<S: ParametricSurface + ?Sized>(
     mut y: State<4>,
     start_point: Vector3<f64>,
     length: f64,
+    scale: f64,
     opts: &GeodesicOptions,
     mut cursor: Cursor,
 ) -> Geodesic {
     let flow = GeodesicFlow { surface };
-    let max_step = opts.max_step * length;
+    let max_step = opts.max_step * scale;
     let ode = Integrator {
         tolerance: opts.tolerance * domain_diameter(surface),
-        min_step: 1e-9 * length,
+        min_step: 1e-9 * scale,
         max_step,
     };
     let mut curve = SurfaceCurve {
@@ -208,7 +218,7 @@ fn integrate<S: ParametricSurface + ?Sized>(
         if length - s <= 1e-14 * length {
             break GeodesicEnd::Length;
         }
-        if curve.uvs.len() > opts.max_points {
+        if curve.uvs.len() >= opts.max_points {
             break GeodesicEnd::Limit;
         }
         // The last step lands exactly on the length.

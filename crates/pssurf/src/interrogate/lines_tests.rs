@@ -275,6 +275,29 @@ fn geodesics_on_a_sphere_are_great_circles() {
         } else {
             assert_eq!(g.end, GeodesicEnd::Boundary);
         }
+        // Asked to run far beyond the patch (a great circle leaves it within π R), it
+        // still runs to the boundary: steps are bounded by the surface's size, not by the
+        // length asked for (with 1e10 R the smallest step was longer than the way left).
+        let to_boundary = geodesic(&s, start, dir, 4.0 * rad, &GeodesicOptions::default());
+        let far = geodesic(&s, start, dir, 1e10 * rad, &GeodesicOptions::default());
+        let (near, far) = (to_boundary.unwrap(), far.unwrap());
+        assert_eq!(
+            (near.end, far.end),
+            (GeodesicEnd::Boundary, GeodesicEnd::Boundary)
+        );
+        assert!((near.length - far.length).abs() <= 1e-6 * rad);
+        let gap = near.curve.points.last().unwrap() - far.curve.points.last().unwrap();
+        assert!(gap.norm() <= 1e-6 * rad, "{}", gap.norm());
+        // At most the points asked for.
+        let few = GeodesicOptions {
+            max_points: 5,
+            ..Default::default()
+        };
+        let short = geodesic(&s, start, dir, 4.0 * rad, &few).unwrap();
+        assert_eq!(
+            (short.curve.points.len(), short.end),
+            (5, GeodesicEnd::Limit)
+        );
     }
 }
 
