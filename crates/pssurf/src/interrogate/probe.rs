@@ -7,7 +7,9 @@
 //! seed's torsion coil).
 //!
 //! Torsion τ = (c′ × c″)·c‴ / |c′ × c″|² needs third derivatives. Bézier triangles (and
-//! rational ones) give them exactly at any degree. PS, UPS and NURPS pieces are quadratic
+//! rational ones) give them exactly at any degree, NURBS surfaces through their coordinate
+//! curves, which are NURBS curves ([`crate::nurbs::NurbsSurface::iso_curves`]). PS, UPS and
+//! NURPS pieces are quadratic
 //! (rational quadratic for NURPS), so their coordinate curves are parabolas (conics), which
 //! are planar: their torsion is zero inside every piece, and the probe reports 0.
 
@@ -236,6 +238,13 @@ fn third_derivatives(surface: &Surface, uv: Point2<f64>) -> ([Vector3<f64>; 2], 
             Some(d) => (d, exact),
             None => ([Vector3::zeros(); 2], "a degenerate domain"),
         },
+        Surface::Nurbs(n) => match n
+            .iso_curves(uv)
+            .and_then(|[cu, cv]| Some([cu.derivatives3(uv.x)?[3], cv.derivatives3(uv.y)?[3]]))
+        {
+            Some(d) => (d, "exact third derivatives of the NURBS coordinate curves"),
+            None => ([Vector3::zeros(); 2], "outside the NURBS domain"),
+        },
         _ => (
             [Vector3::zeros(); 2],
             "zero: the pieces are quadratic, so coordinate curves are planar conics",
@@ -270,6 +279,46 @@ mod tests {
             alignment,
             extent: 0.05,
             step: 1e-4,
+        }
+    }
+
+    /// A bicubic-by-linear NURBS surface S(u, v) = c(u) + v e whose u-curves are the
+    /// twisted cubic c(u) = (u, u², u³) (Bernstein points (0,0,0), (1/3,0,0), (2/3,1/3,0),
+    /// (1,1,1)): their torsion is 3/(9u⁴ + 9u² + 1) from the curves' exact third
+    /// derivatives (it was reported as 0, "the pieces are quadratic"); the v-curves are
+    /// straight (no osculating plane, no torsion).
+    #[test]
+    fn nurbs_coordinate_curves_have_their_torsion() {
+        let e = Vector3::new(0.2, -0.1, 0.3);
+        let c = [
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(1.0 / 3.0, 0.0, 0.0),
+            Vector3::new(2.0 / 3.0, 1.0 / 3.0, 0.0),
+            Vector3::new(1.0, 1.0, 1.0),
+        ];
+        let points = c.iter().flat_map(|&p| [p, p + e]).collect();
+        let s = Surface::Nurbs(
+            crate::nurbs::NurbsSurface::try_new(
+                [3, 1],
+                [
+                    vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+                    vec![0.0, 0.0, 1.0, 1.0],
+                ],
+                [4, 2],
+                points,
+                None,
+            )
+            .unwrap(),
+        );
+        let mut r = rng(1551);
+        for _ in 0..20 {
+            let uv = Point2::new(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0));
+            let p = probe(&s, uv, &opts(Alignment::Parametric)).unwrap();
+            let u = uv.x;
+            let tau = 3.0 / (9.0 * u.powi(4) + 9.0 * u * u + 1.0);
+            assert_near!(p.coordinate_curves[0].torsion.unwrap(), tau, 1e-12);
+            assert_eq!(p.coordinate_curves[1].torsion, None);
+            assert!(p.torsion_source.contains("NURBS"));
         }
     }
 

@@ -12,6 +12,7 @@ use nalgebra::{Point2, Vector3};
 use thiserror::Error;
 
 use super::basis::{KnotError, KnotVector, MAX_DEGREE};
+use super::curve::NurbsCurve;
 use crate::bezier::Jet;
 use crate::surface::{
     ControlFreedom, ControlId, ControlNet, ControlPoint, Cursor, EditError, OutsideDomain,
@@ -194,6 +195,45 @@ impl NurbsSurface {
             }
         }
         rational_jet(&a)
+    }
+
+    /// The isoparametric curves through `uv`, u ↦ S(u, v) and v ↦ S(u, v), as NURBS curves
+    /// (exact: their homogeneous control points are the net's rows or columns contracted
+    /// with the other direction's basis functions at `uv`); `None` outside the domain.
+    /// Their third derivatives give the coordinate curves' torsion.
+    pub fn iso_curves(&self, uv: Point2<f64>) -> Option<[NurbsCurve; 2]> {
+        let [nu, nv] = self.counts();
+        let contracted = |d: usize, t: f64, lines: usize, at: &dyn Fn(usize, usize) -> usize| {
+            let kv = &self.knots[d];
+            let (lo, hi) = kv.domain();
+            if !(t >= lo && t <= hi) {
+                return None;
+            }
+            let i = kv.spans()[kv.span_rank(t)];
+            let b = kv.basis(i, t);
+            let p = kv.degree();
+            let (mut points, mut weights) = (Vec::with_capacity(lines), Vec::with_capacity(lines));
+            for line in 0..lines {
+                let mut h = [0.0f64; 4];
+                for r in 0..=p {
+                    let c = self.homogeneous[at(line, i - p + r)];
+                    for k in 0..4 {
+                        h[k] += b.d[0][r] * c[k];
+                    }
+                }
+                points.push(Vector3::new(h[0], h[1], h[2]) / h[3]);
+                weights.push(h[3]);
+            }
+            Some((points, weights))
+        };
+        let curve = |d: usize, (points, weights): (Vec<Vector3<f64>>, Vec<f64>)| {
+            let kv = &self.knots[d];
+            NurbsCurve::try_new(kv.degree(), kv.knots().to_vec(), points, Some(weights)).ok()
+        };
+        // u ↦ S(u, v): row i is Σ_j N_j(v) w_ij (P_ij, 1); v ↦ S(u, v) likewise by columns.
+        let along_u = contracted(1, uv.y, nu, &|i, j| i * nv + j)?;
+        let along_v = contracted(0, uv.x, nv, &|j, i| i * nv + j)?;
+        Some([curve(0, along_u)?, curve(1, along_v)?])
     }
 
     /// The spans (i, j) of piece `k`.
