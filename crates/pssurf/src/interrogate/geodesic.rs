@@ -180,7 +180,7 @@ pub fn geodesic<S: ParametricSurface + ?Sized>(
     let scale = if size > 0.0 && size.is_finite() {
         length.min(size)
     } else {
-        length.min(size)
+        length
     };
     Ok(integrate(surface, y0, j.value, length, scale, opts, cursor))
 }
