@@ -190,9 +190,82 @@ fn load_limit(path: &Path) -> Result<u64> {
     Ok(Budget::current().memory.saturating_sub(base_memory()) / 8)
 }
 
-/// Checks that loading the surface file at `path` fits the budget, then loads it.
+/// Checks that loading the surface file at `path` fits the budget, then loads it. One
+/// surface of a scene file is named `SCENE.json#K` (object K, from 0); a scene named
+/// without `#K` is refused with that advice.
 pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
-    Ok(pssurf::io::load_limited(path, load_limit(path)?)?)
+    if !path.exists()
+        && let Some((scene, k)) = scene_object_path(path)
+    {
+        return scene_object(&scene, k);
+    }
+    match pssurf::io::load_limited(path, load_limit(path)?) {
+        Ok(s) => Ok(s),
+        Err(
+            e @ pssurf::io::FileError::Format {
+                cause: pssurf::io::FormatError::NotPssurf,
+                ..
+            },
+        ) => match scene_objects(path)? {
+            Some(c) => bail!(
+                "{}: a scene of {} surfaces, not a surface file: name one as {}#K (K from 0 to {})",
+                path.display(),
+                c.surfaces.len(),
+                path.display(),
+                c.surfaces.len().saturating_sub(1)
+            ),
+            None => Err(e.into()),
+        },
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// `SCENE#K` split into the scene file (which exists) and K.
+fn scene_object_path(path: &Path) -> Option<(std::path::PathBuf, usize)> {
+    let text = path.to_str()?;
+    let (file, k) = text.rsplit_once('#')?;
+    let k = k.parse().ok()?;
+    let file = std::path::PathBuf::from(file);
+    file.is_file().then_some((file, k))
+}
+
+/// Object `k` of the scene file `scene`.
+fn scene_object(scene: &Path, k: usize) -> Result<pssurf::surface::Surface> {
+    let Some(mut c) = scene_objects(scene)? else {
+        bail!(
+            "{}: not a scene file, so #{k} names nothing",
+            scene.display()
+        );
+    };
+    let n = c.surfaces.len();
+    if k >= n {
+        bail!(
+            "{}#{k}: the scene has {n} surfaces (objects 0 to {})",
+            scene.display(),
+            n.saturating_sub(1)
+        );
+    }
+    Ok(c.surfaces.swap_remove(k).surface)
+}
+
+/// The objects of a scene file (`pssurf import` and the application write them), or `None`
+/// for a surface file.
+pub fn scene_objects(path: &std::path::Path) -> Result<Option<pssurf::io::SceneContents>> {
+    use std::io::Read;
+    let mut head = Vec::new();
+    if let Ok(f) = std::fs::File::open(path) {
+        let _ = f.take(4096).read_to_end(&mut head);
+    }
+    if !String::from_utf8_lossy(&head).contains(&format!("\"{}\"", pssurf::io::SCENE_FORMAT)) {
+        return Ok(None);
+    }
+    let text = crate::table::read_text(path)?;
+    if !pssurf::io::is_scene(&text) {
+        return Ok(None);
+    }
+    let objects = pssurf::io::scene_contents_from_json(&text)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok(Some(objects))
 }
 
 /// Loads a curve file within the memory budget (as [`load_surface`]).

@@ -1074,3 +1074,36 @@ fn import_with_an_unwritable_loops_file_writes_nothing() {
     assert_eq!(msg.trim().lines().count(), 1, "{msg}");
     assert!(!scene.exists());
 }
+
+/// A scene file (here the sphere's 12 patches) given where one surface is expected is refused
+/// with the way to name one object, `SCENE.json#K`, which then works like a surface file.
+#[test]
+fn one_surface_of_a_scene_is_named_with_its_index() {
+    let d = tmp();
+    let scene = s(&d.path().join("sphere.json"));
+    ok_report(&["new", "sphere", "-o", &scene]);
+    let msg = fails(&["fairness", &scene]);
+    assert!(
+        msg.contains("scene of 12 surfaces") && msg.contains("sphere.json#K"),
+        "{msg}"
+    );
+    let table = ok(&[
+        "curvature",
+        &format!("{scene}#3"),
+        "--grid",
+        "6x6",
+        "--outside",
+        "skip",
+    ]);
+    let mut rows = 0;
+    for line in table.lines().skip(1) {
+        let row: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        // A unit sphere: K = 1 and |H| = 1 at every point.
+        assert!((row[5] - 1.0).abs() < 1e-10, "{line}");
+        assert!((row[6].abs() - 1.0).abs() < 1e-10, "{line}");
+        rows += 1;
+    }
+    assert!(rows > 5, "{table}");
+    let msg = fails(&["fairness", &format!("{scene}#12")]);
+    assert!(msg.contains("objects 0 to 11"), "{msg}");
+}

@@ -237,7 +237,7 @@ fn is_placed(object: &serde_json::Value) -> bool {
 /// The surfaces of a scene or surface file. Objects the application placed elsewhere are
 /// refused: the hole's curves are taken in each surface's own coordinates.
 fn scene_surfaces(path: &Path) -> Result<Vec<(String, Arc<Surface>)>> {
-    Ok(match super::info::scene_objects(path)? {
+    Ok(match crate::budget::scene_objects(path)? {
         Some(contents) => {
             let objects = contents.surfaces;
             let text = crate::table::read_text(path)?;

@@ -100,7 +100,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     if is_curve_file(&args.surface) {
         return curve_info(args);
     }
-    if let Some(contents) = scene_objects(&args.surface)? {
+    if let Some(contents) = crate::budget::scene_objects(&args.surface)? {
         let infos: Vec<Info> = (contents.surfaces)
             .iter()
             .enumerate()
@@ -314,7 +314,7 @@ fn plane_normal(pts: &[nalgebra::Vector3<f64>]) -> Option<nalgebra::Vector3<f64>
 
 /// The surfaces of a surface file (one, named by the file) or of a scene file, with names.
 pub fn load_named_surfaces(path: &std::path::Path) -> Result<Vec<(String, Surface)>> {
-    Ok(match scene_objects(path)? {
+    Ok(match crate::budget::scene_objects(path)? {
         Some(c) if c.surfaces.is_empty() => {
             anyhow::bail!("{}: the scene has no surfaces", path.display())
         }
@@ -330,33 +330,13 @@ pub fn load_named_surfaces(path: &std::path::Path) -> Result<Vec<(String, Surfac
 
 /// The surfaces of a surface file (one) or of a scene file (every object's).
 pub fn load_surfaces(path: &std::path::Path) -> Result<Vec<Surface>> {
-    Ok(match scene_objects(path)? {
+    Ok(match crate::budget::scene_objects(path)? {
         Some(c) if c.surfaces.is_empty() => {
             anyhow::bail!("{}: the scene has no surfaces", path.display())
         }
         Some(c) => c.surfaces.into_iter().map(|o| o.surface).collect(),
         None => vec![crate::budget::load_surface(path)?],
     })
-}
-
-/// The objects of a scene file (`pssurf import` and the application write them), or `None`
-/// for a surface file.
-pub(crate) fn scene_objects(path: &std::path::Path) -> Result<Option<pssurf::io::SceneContents>> {
-    use std::io::Read;
-    let mut head = Vec::new();
-    if let Ok(f) = std::fs::File::open(path) {
-        let _ = f.take(4096).read_to_end(&mut head);
-    }
-    if !String::from_utf8_lossy(&head).contains(&format!("\"{}\"", pssurf::io::SCENE_FORMAT)) {
-        return Ok(None);
-    }
-    let text = crate::table::read_text(path)?;
-    if !pssurf::io::is_scene(&text) {
-        return Ok(None);
-    }
-    let objects = pssurf::io::scene_contents_from_json(&text)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok(Some(objects))
 }
 
 fn collect(s: &Surface, file: String) -> Info {
