@@ -956,7 +956,7 @@ pub fn load(path: &Path) -> Result<Surface, FileError> {
 /// stays bounded whatever `path` is.
 pub fn load_limited(path: &Path, max_bytes: u64) -> Result<Surface, FileError> {
     let contents = match read_limited(path, max_bytes)? {
-        Contents::Binary(file) => file,
+        Contents::Binary(file, layout) => (file, layout),
         Contents::Text(text) => {
             return from_json_str(&text).map_err(|cause| FileError::Format {
                 path: path.to_path_buf(),
@@ -964,13 +964,14 @@ pub fn load_limited(path: &Path, max_bytes: u64) -> Result<Surface, FileError> {
             });
         }
     };
-    binary::read(contents, path, max_bytes)
+    let (reader, layout) = contents;
+    binary::read(reader, layout, path, max_bytes)
 }
 
 /// A surface file opened and recognised by its first bytes.
 enum Contents {
-    /// A binary file (its magic number read; positioned after it).
-    Binary(std::io::BufReader<std::fs::File>),
+    /// A binary file (its magic number read; positioned after it) and its layout version.
+    Binary(std::io::BufReader<std::fs::File>, u8),
     /// The whole text of a JSON file.
     Text(String),
 }
@@ -990,8 +991,22 @@ fn read_limited(path: &Path, max_bytes: u64) -> Result<Contents, FileError> {
         .take(binary::MAGIC.len() as u64)
         .read_to_end(&mut head)
         .map_err(io)?;
-    if head == binary::MAGIC {
-        return Ok(Contents::Binary(reader));
+    if head.len() == binary::MAGIC.len() && head.starts_with(binary::MAGIC_PREFIX) {
+        let layout = head[7];
+        if !binary::LAYOUTS.contains(&layout) {
+            return Err(FileError::Format {
+                path: path.to_path_buf(),
+                cause: invalid(
+                    "magic number",
+                    format!(
+                        "binary layout version {layout} is not supported (this build reads versions {} and {})",
+                        binary::LAYOUTS[0],
+                        binary::LAYOUTS[1]
+                    ),
+                ),
+            });
+        }
+        return Ok(Contents::Binary(reader, layout));
     }
     let text = text_limited(path, head.as_slice().chain(reader), max_bytes)?;
     Ok(Contents::Text(text))
@@ -1078,7 +1093,7 @@ pub fn is_binary_surface_file(path: &Path) -> bool {
     let mut head = Vec::with_capacity(binary::MAGIC.len());
     std::fs::File::open(path)
         .and_then(|f| f.take(binary::MAGIC.len() as u64).read_to_end(&mut head))
-        .is_ok_and(|_| head == binary::MAGIC)
+        .is_ok_and(|_| head.len() == binary::MAGIC.len() && head.starts_with(binary::MAGIC_PREFIX))
 }
 
 /// The extension of binary surface files.

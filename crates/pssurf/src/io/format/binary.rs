@@ -13,8 +13,15 @@ use serde::{Deserialize, Serialize};
 
 use super::{FORMAT_NAME, FORMAT_VERSION, FileError, FileV1, FormatError, Surface, build, invalid};
 
-/// The first eight bytes of a binary surface file.
-pub const MAGIC: &[u8; 8] = b"PSSURFB\x01";
+/// The first eight bytes of a binary surface file as written: `PSSURFB` and the layout's
+/// version, 2 (the header has a CRC-32 of its own; version 1, still read, had none).
+pub const MAGIC: &[u8; 8] = b"PSSURFB\x02";
+
+/// The first seven bytes of every binary surface file, before the layout's version.
+pub const MAGIC_PREFIX: &[u8; 7] = b"PSSURFB";
+
+/// The layout versions this build reads: 1 (no header checksum) and 2.
+pub const LAYOUTS: [u8; 2] = [1, 2];
 
 /// The largest JSON header accepted (the arrays are outside it).
 const MAX_HEADER: u64 = 64 << 20;
@@ -178,6 +185,8 @@ pub(super) fn write(mut file: FileV1, w: &mut dyn Write) -> std::io::Result<()> 
     let mut w = std::io::BufWriter::with_capacity(BLOCK, w);
     w.write_all(MAGIC)?;
     w.write_all(&(json.len() as u64).to_le_bytes())?;
+    w.write_all(&crc32fast::hash(&json).to_le_bytes())?;
+    w.write_all(&[0u8; 4])?;
     w.write_all(&json)?;
     w.write_all(&[0u8; 8][..padding(json.len() as u64) as usize])?;
     for (_, data, _) in &arrays {
@@ -204,6 +213,7 @@ fn spec(field: &str) -> Option<(&'static str, &'static str, u64)> {
 /// Reads the rest of a binary surface file (after its magic number) and builds the surface.
 pub(super) fn read(
     reader: BufReader<std::fs::File>,
+    layout: u8,
     path: &Path,
     max_bytes: u64,
 ) -> Result<Surface, FileError> {
@@ -231,7 +241,7 @@ pub(super) fn read(
         inner: reader,
         left: size.unwrap_or(max_bytes).saturating_sub(MAGIC.len() as u64),
     };
-    let file = read_document(&mut r).map_err(|e| match e {
+    let file = read_document(&mut r, layout).map_err(|e| match e {
         ReadError::Format(e) => format(e),
         ReadError::Io(e) => io(e),
     })?;
@@ -289,7 +299,7 @@ fn truncated(what: &str) -> ReadError {
 }
 
 /// Reads the header and every chunk into the document.
-fn read_document(r: &mut Limited) -> Result<FileV1, ReadError> {
+fn read_document(r: &mut Limited, layout: u8) -> Result<FileV1, ReadError> {
     let mut len = [0u8; 8];
     r.fill(&mut len, "header")?;
     let len = u64::from_le_bytes(len);
@@ -300,9 +310,22 @@ fn read_document(r: &mut Limited) -> Result<FileV1, ReadError> {
         )
         .into());
     }
+    // Layout 2: the header's CRC-32 and four zero bytes.
+    let mut check = [0u8; 8];
+    if layout >= 2 {
+        r.fill(&mut check, "header")?;
+        if check[4..] != [0u8; 4] {
+            return Err(
+                invalid("header", "checksum field corrupted: the file is corrupted").into(),
+            );
+        }
+    }
     r.claim(len, "header")?;
     let mut json = vec![0u8; len as usize];
     r.fill(&mut json, "header")?;
+    if layout >= 2 && crc32fast::hash(&json).to_le_bytes() != check[..4] {
+        return Err(invalid("header", "checksum mismatch: the file is corrupted").into());
+    }
     let header: Header = serde_json::from_slice(&json).map_err(super::syntax)?;
     if header.format != FORMAT_NAME {
         return Err(FormatError::NotPssurf.into());
