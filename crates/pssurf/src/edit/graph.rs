@@ -40,7 +40,11 @@
 //! (4) (curvature λ) and (5) (torsion σ) are solved by Newton's method in (t_f, t_g) from the
 //! planar solution. The interpolating curves then pass through f(r_i) at s = g(r_i), so the
 //! surface contains α at the nodes only (as the paper says, α is no longer a coordinate
-//! curve). For a given curvature the torsion reachable this way is bounded: τ is t_g A over
+//! curve). The crossing g(r_i) moves with r_i, so the nodes' data are no longer a multiple of
+//! φ(r): (3) with the μ + 1 values alone would be C⁰ across r₀ and r₂ only. The q_j are then
+//! the confluent interpolants with zero value and derivatives 1…k_r at r₀ and r₂ and the
+//! values at the μ − 1 interior nodes, of degree 4k_r + 2 in r.
+//! For a given curvature the torsion reachable this way is bounded: τ is t_g A over
 //! B + t_g² C near the point, at most |A| / (2√(BC)); beyond it the error says so. With C⁰ (μ = 2) φ is quadratic and g''' = 0, so σ = 0 is the only torsion possible
 //! unless f_old''' ≠ 0: the error says so.
 //!
@@ -447,7 +451,7 @@ impl GraphPatch {
             }
         };
         // The interpolating curves of the change, and the Vandermonde systems (3).
-        let change = change_surface(&h, &phi, &nodes, [s0, s1, s2], ks, nu, tf, tg)?;
+        let change = change_surface(&h, &phi, &nodes, [s0, s1, s2], [kr, ks], nu, tf, tg)?;
         let change = match req.direction {
             Direction::U => change,
             Direction::V => change.transposed(),
@@ -740,14 +744,15 @@ fn torsion_parameters(
 }
 
 /// The change of h in (r, s): the interpolating curves of the change at the nodes (through the
-/// curve at s = s₁, or at s = g(r_i) for a twisted curve) and the Vandermonde systems (3).
+/// curve at s = s₁, or at s = g(r_i) for a twisted curve) and the Vandermonde systems (3)
+/// (confluent at r₀ and r₂ for a twisted curve, so that the change is C^{k_r} there).
 #[allow(clippy::too_many_arguments)]
 fn change_surface(
     h: &Poly2,
     phi: &Poly1,
     nodes: &[f64],
     [s0, s1, s2]: [f64; 3],
-    ks: usize,
+    [kr, ks]: [usize; 2],
     nu: usize,
     tf: f64,
     tg: f64,
@@ -775,11 +780,35 @@ fn change_surface(
         debug_assert_eq!(p.0.len(), nu + 1);
         rows.push(p.0);
     }
-    // q_j(r_i) = a_ij: one Vandermonde system per power of s.
+    // q_j(r_i) = a_ij: one Vandermonde system per power of s. Every p_i is a multiple of
+    // ψ(s), so the s borders are C^{k_s} whatever the q_j. Across the r borders the change is
+    // C^{k_r} only if every q_j vanishes to order k_r + 1 at r₀ and r₂. For a planar curve the
+    // data are t φ(r_i) · (coefficients of ψ/ψ(s₁)), and the degree-μ interpolant reproduces
+    // t φ exactly. For a twisted curve the crossing s = g(r_i) moves with r_i, the data are not
+    // samples of a multiple of φ, and the interpolant of the μ + 1 values has only zeros at r₀
+    // and r₂ (C⁰): its derivatives jump. So the twisted case prescribes q_j^{(m)} = 0 at r₀ and
+    // r₂ for m = 0…k_r and q_j(r_i) = a_ij at the μ − 1 interior nodes: degree 4k_r + 2, the
+    // "higher degree in r" the paper says the approximation of α costs.
     let mu = nodes.len() - 1;
     let interval = [nodes[0], nodes[mu]];
-    let conditions: Vec<(f64, usize)> = nodes.iter().map(|&r| (r, 0)).collect();
-    let mut coeffs = DMatrix::zeros(mu + 1, nu + 1);
+    let (conditions, rows): (Vec<(f64, usize)>, Vec<Vec<f64>>) = if tg == 0.0 {
+        (nodes.iter().map(|&r| (r, 0)).collect(), rows)
+    } else {
+        let mut conditions = Vec::new();
+        let mut data = Vec::new();
+        for m in 0..=kr {
+            for r in interval {
+                conditions.push((r, m));
+                data.push(vec![0.0; nu + 1]);
+            }
+        }
+        for (&r, a) in nodes.iter().zip(&rows).take(mu).skip(1) {
+            conditions.push((r, 0));
+            data.push(a.clone());
+        }
+        (conditions, data)
+    };
+    let mut coeffs = DMatrix::zeros(conditions.len(), nu + 1);
     for j in 0..=nu {
         let values: Vec<f64> = rows.iter().map(|a| a[j]).collect();
         let q = interpolate(&conditions, &values, interval)?;
