@@ -176,6 +176,75 @@ pub fn beta_by_subdivision(delta_k: Vector3<f64>, bd_i: Vector3<f64>, bd_j: Vect
     0.5 * delta_k.dot(&(bd_i + bd_j))
 }
 
+/// The weight of the ridge (α − α_prior)² in [`refit_alphas`], against fitting equations
+/// whose coefficients are unit vectors. It only decides what (5.16) leaves open: along a
+/// straight run the γ's are parallel and (5.16) fixes the differences of the α's, not their
+/// common part.
+pub const REFIT_RIDGE: f64 = 1e-9;
+
+/// The α's of the vertices 0..=N of a run of N boundary edges, fitted together: the
+/// least-squares solution of α_m γ_m − α_{m+1} γ_{m+1} = q_m (5.16) for every edge m, the
+/// system (5.19)–(5.20) and (5.23) of the initial solution, at the current level, plus
+/// [`REFIT_RIDGE`] (α_m − prior_m)². Vertices marked `fixed` keep their prior. The normal
+/// equations are tridiagonal and strictly diagonally dominant (|γ_m · γ_{m+1}| ≤ 1), solved
+/// by the Thomas algorithm in O(N). `None` when an α is not positive or not finite.
+pub fn refit_alphas(
+    gammas: &[Vector3<f64>],
+    qs: &[Vector3<f64>],
+    prior: &[f64],
+    fixed: &[bool],
+) -> Option<Vec<f64>> {
+    let n = gammas.len();
+    debug_assert!(n >= 2 && qs.len() + 1 == n && prior.len() == n && fixed.len() == n);
+    // Row m: off[m − 1] α_{m−1} + diag[m] α_m + off[m] α_{m+1} = rhs[m].
+    let mut diag = vec![REFIT_RIDGE; n];
+    let mut off = vec![0.0; n - 1];
+    let mut rhs: Vec<f64> = prior.iter().map(|a| REFIT_RIDGE * a).collect();
+    for m in 0..n - 1 {
+        diag[m] += 1.0;
+        diag[m + 1] += 1.0;
+        off[m] = -gammas[m].dot(&gammas[m + 1]);
+        rhs[m] += gammas[m].dot(&qs[m]);
+        rhs[m + 1] -= gammas[m + 1].dot(&qs[m]);
+    }
+    for m in 0..n {
+        if fixed[m] {
+            diag[m] = 1.0;
+            rhs[m] = prior[m];
+            if m > 0 {
+                rhs[m - 1] -= off[m - 1] * prior[m];
+                off[m - 1] = 0.0;
+            }
+            if m + 1 < n {
+                rhs[m + 1] -= off[m] * prior[m];
+                off[m] = 0.0;
+            }
+        }
+    }
+    let (mut c, mut d) = (vec![0.0; n], vec![0.0; n]);
+    for m in 0..n {
+        let (lower, c_prev, d_prev) = if m > 0 {
+            (off[m - 1], c[m - 1], d[m - 1])
+        } else {
+            (0.0, 0.0, 0.0)
+        };
+        let pivot = diag[m] - lower * c_prev;
+        if !(pivot > 0.0) {
+            return None;
+        }
+        c[m] = if m + 1 < n { off[m] / pivot } else { 0.0 };
+        d[m] = (rhs[m] - lower * d_prev) / pivot;
+    }
+    let mut alphas = d;
+    for m in (0..n - 1).rev() {
+        alphas[m] -= c[m] * alphas[m + 1];
+    }
+    alphas
+        .iter()
+        .all(|a| a.is_finite() && *a > 0.0)
+        .then_some(alphas)
+}
+
 /// The initial α's along one side of the coarse domain, split into `gammas.len() − 1` steps
 /// (1, or 2 for the long sides of the pentagon): the least-squares solution of
 /// α_m γ_m − α_{m+1} γ_{m+1} = q_m (5.16), (5.19)–(5.20), or of (5.23) for two steps.
