@@ -107,6 +107,15 @@ pub enum HoleError {
     /// All curves in one point.
     #[error("the boundary curves have no extent")]
     ZeroSize,
+    /// Two curves given as a gap coincide in their middles: there is no gap between them.
+    #[error(
+        "curves 1 and 2 meet in their middles too ({} apart): there is no gap between them to fill",
+        crate::text::Short(*distance)
+    )]
+    NoGap {
+        /// The distance between the curves' middles.
+        distance: f64,
+    },
     /// A tolerance outside (0, 1).
     #[error("the tolerance must be a number between 0 and 1 (relative to the model size), not {0}")]
     BadTolerance(f64),
@@ -261,6 +270,13 @@ pub fn gap_between(a: SharedCurve, b: SharedCurve) -> Result<[HoleBoundary; 2], 
     };
     let (p0, p1) = (a.point(0.5), b.point(0.5));
     let chord = p1 - p0;
+    // The bisector runs between the middles: none when they coincide (two identical arcs),
+    // which would otherwise be reported as an internal curve with a vanishing tangent.
+    if !(chord.norm() > tolerance) {
+        return Err(HoleError::NoGap {
+            distance: chord.norm(),
+        });
+    }
     // Across the curve, in its tangent plane, towards the other middle.
     let across = |c: &SharedCurve, towards: nalgebra::Vector3<f64>| {
         let (g, n) = (c.tangent(0.5), c.normal(0.5));

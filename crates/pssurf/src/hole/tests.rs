@@ -494,6 +494,10 @@ fn gap_between_bisects_automatically() {
         let f = fill_hole(h, &FillOptions::default()).unwrap();
         assert!(f.converged && f.report.g1_max_degrees <= 0.5);
     }
+    // Two identical arcs enclose nothing: said so, not reported as a vanishing tangent of
+    // the internal bisector ("curve 3", which the user never gave).
+    let e = gap_between(lift(1.0), lift(1.0)).err().expect("no gap");
+    assert!(matches!(e, HoleError::NoGap { .. }), "{e}");
 }
 
 /// A UPS patch whose every control triangle is the Hermite data of the quadratic map
