@@ -9,6 +9,7 @@ use crate::ps::fair::{FairOptions, fair};
 use crate::surface::{Surface, UniformSurface, UpsSurface};
 use crate::ups::subdivision::edge_subdivision;
 use crate::ups::threshold::{Shrink, ThresholdRule};
+use crate::ups::wavelet::Update;
 use crate::ups::{Ups, UpsGrid};
 
 /// How the interior control triangles are found.
@@ -250,11 +251,13 @@ fn thresholded(
         return Ok(patch.clone());
     }
     let surface = UpsSurface::Parametric(patch.clone());
+    // The thesis' transform, as 5.4.2 uses it.
     let (smooth, _) = surface
-        .denoise(
+        .denoise_with(
             levels as u32,
             |_, _| ThresholdRule::PercentOfMax(percent),
             Shrink::Hard,
+            Update::Thesis,
         )
         .map_err(HoleError::Ups)?;
     let UpsSurface::Parametric(smooth) = smooth else {

@@ -17,7 +17,7 @@ use crate::bezier::Jet;
 use crate::noise::{NoiseKind, perturb};
 use crate::ps::net::Weighted;
 use crate::ups::threshold::{LevelStats, Shrink, ThresholdRule};
-use crate::ups::wavelet::Decomposition;
+use crate::ups::wavelet::{Decomposition, Update};
 use crate::ups::{LatticePoint, Ups, UpsError, UpsGrid, fixed_ps_triangle};
 use crate::vector::Vector;
 
@@ -129,29 +129,51 @@ impl UpsSurface {
         }
     }
 
-    /// The lifting wavelet transform over `levels` levels (section 4.5).
+    /// The lifting wavelet transform of the thesis over `levels` levels (section 4.5).
     pub fn wavelet_transform(&self, levels: u32) -> Result<UpsDecomposition, UpsError> {
+        self.wavelet_transform_with(levels, Update::Thesis)
+    }
+
+    /// The lifting wavelet transform over `levels` levels with the given update step.
+    pub fn wavelet_transform_with(
+        &self,
+        levels: u32,
+        update: Update,
+    ) -> Result<UpsDecomposition, UpsError> {
         match self {
-            UpsSurface::Functional(s) => {
-                Ok(UpsDecomposition::Functional(s.wavelet_transform(levels)?))
-            }
-            UpsSurface::Parametric(s) => {
-                Ok(UpsDecomposition::Parametric(s.wavelet_transform(levels)?))
-            }
+            UpsSurface::Functional(s) => Ok(UpsDecomposition::Functional(
+                s.wavelet_transform_with(levels, update)?,
+            )),
+            UpsSurface::Parametric(s) => Ok(UpsDecomposition::Parametric(
+                s.wavelet_transform_with(levels, update)?,
+            )),
             UpsSurface::Rational(_) => Err(UpsError::RationalWavelet),
         }
     }
 
-    /// Denoising by wavelet thresholding: transform over `levels` levels, shrink every detail
-    /// coefficient with the threshold `rule(level, component)` (level 0 is the coarsest), and
-    /// reconstruct. Returns the result and the per-level statistics.
+    /// Denoising by wavelet thresholding: transform over `levels` levels with the stable
+    /// update ([`Update::Stable`]; with the thesis' update the coarse part of a noisy surface
+    /// is noisier than the surface, see docs/ups.md), shrink every detail coefficient with the
+    /// threshold `rule(level, component)` (level 0 is the coarsest), and reconstruct. Returns
+    /// the result and the per-level statistics.
     pub fn denoise(
         &self,
         levels: u32,
         rule: impl Fn(usize, usize) -> ThresholdRule,
         mode: Shrink,
     ) -> Result<(UpsSurface, Vec<LevelStats>), UpsError> {
-        let mut dec = self.wavelet_transform(levels)?;
+        self.denoise_with(levels, rule, mode, Update::Stable)
+    }
+
+    /// [`UpsSurface::denoise`] with the given update step.
+    pub fn denoise_with(
+        &self,
+        levels: u32,
+        rule: impl Fn(usize, usize) -> ThresholdRule,
+        mode: Shrink,
+        update: Update,
+    ) -> Result<(UpsSurface, Vec<LevelStats>), UpsError> {
+        let mut dec = self.wavelet_transform_with(levels, update)?;
         let stats = dec.threshold(rule, mode);
         Ok((dec.reconstruct(), stats))
     }

@@ -1,7 +1,7 @@
 //! Wavelet thresholding for noise removal (thesis 4.5.6, seed 000 section 4), with automatic
 //! threshold choices beyond the thesis.
 
-use super::wavelet::Decomposition;
+use super::wavelet::{Decomposition, Update};
 use crate::vector::Vector;
 
 /// What happens to the coefficients above the threshold.
@@ -45,17 +45,22 @@ impl ThresholdRule {
         }
     }
 
-    /// The threshold for a set of coefficients.
+    /// The threshold for a set of coefficients, with the noise level estimated from them.
     pub fn threshold(&self, d: &[f64]) -> f64 {
+        self.threshold_with_sigma(d, None)
+    }
+
+    /// The threshold for a set of coefficients; `sigma` is the noise level for the universal
+    /// and SURE rules (estimated from `d` itself when `None`).
+    pub fn threshold_with_sigma(&self, d: &[f64], sigma: Option<f64>) -> f64 {
+        let noise = || sigma.unwrap_or_else(|| noise_sigma(d));
         match *self {
             ThresholdRule::Absolute(t) => t,
             ThresholdRule::PercentOfMax(p) => {
                 p / 100.0 * d.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
             }
-            ThresholdRule::Universal => {
-                noise_sigma(d) * (2.0 * (d.len().max(1) as f64).ln()).sqrt()
-            }
-            ThresholdRule::Sure => sure_threshold(d),
+            ThresholdRule::Universal => noise() * (2.0 * (d.len().max(1) as f64).ln()).sqrt(),
+            ThresholdRule::Sure => sure_threshold_with_sigma(d, noise()),
             ThresholdRule::Gcv => gcv_threshold(d),
         }
     }
@@ -76,7 +81,11 @@ pub fn noise_sigma(d: &[f64]) -> f64 {
 /// SureShrink: the t ∈ {0} ∪ {|d_i|} minimising
 /// SURE(t) = n σ² − 2σ² #{|d_i| ≤ t} + Σ min(d_i², t²).
 pub fn sure_threshold(d: &[f64]) -> f64 {
-    let sigma = noise_sigma(d);
+    sure_threshold_with_sigma(d, noise_sigma(d))
+}
+
+/// [`sure_threshold`] for a known noise level `sigma`.
+pub fn sure_threshold_with_sigma(d: &[f64], sigma: f64) -> f64 {
     if d.is_empty() || !(sigma > 0.0) {
         return 0.0;
     }
@@ -196,16 +205,28 @@ impl<V: Vector + Default> Decomposition<V> {
 
     /// Thresholds every level and coordinate with the rule `rule(level, component)` (level
     /// 0 = coarsest) and returns what was done.
+    ///
+    /// The noise level of the universal and SURE rules: with [`Update::Stable`] the detail
+    /// coefficients of white noise have the same spread at every level (1.3–1.6 σ), so σ is
+    /// estimated once per coordinate from the finest level, where the signal is weakest — a
+    /// coarse level's own median is mostly signal. The thesis' transform doubles the noise
+    /// per level, so it keeps the estimate per level.
     pub fn threshold(
         &mut self,
         rule: impl Fn(usize, usize) -> ThresholdRule,
         mode: Shrink,
     ) -> Vec<LevelStats> {
+        let sigma: Vec<Option<f64>> = (0..V::DIM)
+            .map(|c| match (self.update, self.levels.len().checked_sub(1)) {
+                (Update::Stable, Some(finest)) => Some(noise_sigma(&self.coefficients(finest, c))),
+                _ => None,
+            })
+            .collect();
         let mut stats = Vec::new();
         for level in 0..self.levels.len() {
             for component in 0..V::DIM {
                 let d = self.coefficients(level, component);
-                let t = rule(level, component).threshold(&d);
+                let t = rule(level, component).threshold_with_sigma(&d, sigma[component]);
                 let zeroed = d.iter().filter(|x| x.abs() < t).count();
                 stats.push(LevelStats {
                     level: level + 1,

@@ -23,7 +23,19 @@
 //! k_{m,j} = 1 / (2 (1 + S_{m,j})) makes every complementary sequence sum to zero, whatever
 //! the boundary configuration. In the interior S = 3 and k = 1/8, as in (4.51); the boundary
 //! cases (the lost Figure 4.20) follow from the actual neighbourhood — see `docs/ups.md`.
+//!
+//! That update ([`Update::Thesis`]) keeps the average but acts on each component alone, so
+//! it cannot undo what the scaling step does to noise: the inverse old-vertex rule has
+//! eigenvalues 1, 2, 2 and doubles the shape noise of the coarse control triangles at every
+//! level (coarse coefficients of pure noise σ: 7σ after three levels). [`Update::Stable`] is
+//! the multi-wavelet update of thesis 4.5.5: every coarse component takes a combination of
+//! all components of the neighbouring details, chosen per fan of triangles as the
+//! smallest-norm local left inverse of subdivision under the same zero-sum condition on the
+//! complementary sequences. Denoising uses it.
 
+use std::sync::OnceLock;
+
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::UpsError;
@@ -58,7 +70,27 @@ pub struct Decomposition<V> {
     pub coarse: Ups<V>,
     /// The detail levels from the coarsest (index 0, the thesis' k = 1) to the finest.
     pub levels: Vec<DetailLevel<V>>,
+    /// The update step the decomposition was made with (the inverse needs the same).
+    pub update: Update,
 }
+
+/// The update step of the lifting scheme. Both keep perfect reconstruction, exact
+/// prediction of quadratics and zero-sum complementary sequences (Property 4.3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Update {
+    /// The thesis' update (4.51): component j of a coarse triple takes k_j times component j
+    /// of each neighbouring detail ([`fan_update_weights`]). Not stable: noise in the coarse
+    /// control triangles doubles at every level.
+    #[default]
+    Thesis,
+    /// The multi-wavelet update (thesis 4.5.5), [`stable_update_matrix`]: noise keeps its
+    /// size from level to level, so the coarse part of a noisy surface is smoother than it.
+    Stable,
+}
+
+/// `U[r][d][q]`: the weight of component q of the detail at the midpoint of the edge in
+/// direction d ([`super::grid::NEIGHBORS`]) in the update of component r of the coarse triple.
+pub type UpdateMatrix = [[[f64; 3]; 6]; 3];
 
 /// The scaling step: the triples c̃ with old_vertex_rule(c̃) = c, by undoing the factored
 /// steps of (4.24) in reverse order.
@@ -98,8 +130,13 @@ pub fn update_weights(_fine: &UpsGrid, coarse: &UpsGrid) -> Vec<[f64; 3]> {
 }
 
 impl<V: Vector + Default> Ups<V> {
-    /// One forward lifting step: the coarse spline (scaling coefficients) and the details.
+    /// One forward lifting step with the thesis' update ([`Ups::wavelet_step_with`]).
     pub fn wavelet_step(&self) -> Result<(Ups<V>, DetailLevel<V>), UpsError> {
+        self.wavelet_step_with(Update::Thesis)
+    }
+
+    /// One forward lifting step: the coarse spline (scaling coefficients) and the details.
+    pub fn wavelet_step_with(&self, update: Update) -> Result<(Ups<V>, DetailLevel<V>), UpsError> {
         let fine = self.grid();
         let coarse = fine.coarsened().ok_or(UpsError::TooManyLevels {
             requested: 1,
@@ -137,8 +174,7 @@ impl<V: Vector + Default> Ups<V> {
             }
         });
         // Update.
-        let k = update_weights(fine, &coarse);
-        apply_update(fine, &coarse, &details, &k, &mut low, 1.0);
+        apply_update(fine, &coarse, &details, update, &mut low, 1.0);
         Ok((
             Ups::from_parts(coarse, low),
             DetailLevel {
@@ -148,13 +184,21 @@ impl<V: Vector + Default> Ups<V> {
         ))
     }
 
-    /// One inverse step: undo the update, add the predictions, scale back.
+    /// One inverse step with the thesis' update ([`Ups::wavelet_inverse_step_with`]).
     pub fn wavelet_inverse_step(coarse: &Ups<V>, level: &DetailLevel<V>) -> Ups<V> {
+        Self::wavelet_inverse_step_with(coarse, level, Update::Thesis)
+    }
+
+    /// One inverse step: undo the update, add the predictions, scale back.
+    pub fn wavelet_inverse_step_with(
+        coarse: &Ups<V>,
+        level: &DetailLevel<V>,
+        update: Update,
+    ) -> Ups<V> {
         let fine = &level.grid;
         let cgrid = coarse.grid();
         let mut low = coarse.blocks().to_vec();
-        let k = update_weights(fine, cgrid);
-        apply_update(fine, cgrid, &level.details, &k, &mut low, -1.0);
+        apply_update(fine, cgrid, &level.details, update, &mut low, -1.0);
         let [n0, _] = fine.dims();
         let mut out = vec![[V::default(); 3]; fine.slots()];
         out.par_chunks_mut(n0).enumerate().for_each(|(j, row)| {
@@ -180,9 +224,18 @@ impl<V: Vector + Default> Ups<V> {
         Ups::from_parts(fine.clone(), out)
     }
 
+    /// The f-level forward transform of the thesis ([`Update::Thesis`]).
+    pub fn wavelet_transform(&self, levels: u32) -> Result<Decomposition<V>, UpsError> {
+        self.wavelet_transform_with(levels, Update::Thesis)
+    }
+
     /// The f-level forward transform: `levels` lifting steps, each on the previous low-pass
     /// spline. Fails when the triangulation cannot be coarsened that often.
-    pub fn wavelet_transform(&self, levels: u32) -> Result<Decomposition<V>, UpsError> {
+    pub fn wavelet_transform_with(
+        &self,
+        levels: u32,
+        update: Update,
+    ) -> Result<Decomposition<V>, UpsError> {
         let available = self.grid().coarsening_levels();
         if levels > available {
             return Err(UpsError::TooManyLevels {
@@ -193,7 +246,7 @@ impl<V: Vector + Default> Ups<V> {
         let mut coarse = self.clone();
         let mut out = Vec::with_capacity(levels as usize);
         for _ in 0..levels {
-            let (c, d) = coarse.wavelet_step()?;
+            let (c, d) = coarse.wavelet_step_with(update)?;
             coarse = c;
             out.push(d);
         }
@@ -201,18 +254,20 @@ impl<V: Vector + Default> Ups<V> {
         Ok(Decomposition {
             coarse,
             levels: out,
+            update,
         })
     }
 }
 
-/// `low[m][j] += sign · k[m][j] · d[l][j]` for every detail slot l and both coarse slots m it
-/// was predicted from — gathered per coarse slot: the details that update coarse vertex
-/// (i, j) sit at the midpoints (2i, 2j) + d of its six edges. Parallel over rows.
+/// `low[m][j] += sign · k[m][j] · d[l][j]` (thesis) or `low[m][r] += sign · Σ_q U[r][d][q]
+/// d[l][q]` (stable) for every detail slot l and both coarse slots m it was predicted from —
+/// gathered per coarse slot: the details that update coarse vertex (i, j) sit at the
+/// midpoints (2i, 2j) + d of its six edges. Parallel over rows.
 fn apply_update<V: Vector>(
     fine: &UpsGrid,
     coarse: &UpsGrid,
     details: &[[V; 3]],
-    k: &[[f64; 3]],
+    update: Update,
     low: &mut [[V; 3]],
     sign: f64,
 ) {
@@ -224,6 +279,29 @@ fn apply_update<V: Vector>(
             if !coarse.is_real(m) {
                 continue;
             }
+            if update == Update::Stable {
+                let u = stable_update_for(&coarse.sectors(m));
+                let mut add = [V::zero(); 3];
+                for (dir, d) in super::grid::NEIGHBORS.iter().enumerate() {
+                    let (a, b) = (2 * i as i64 + d[0], 2 * j as i64 + d[1]);
+                    if a < 0 || b < 0 || a as usize >= f0 || b as usize >= f1 {
+                        continue;
+                    }
+                    let f = fine.slot(a as usize, b as usize);
+                    if fine.is_real(f) {
+                        for (r, acc) in add.iter_mut().enumerate() {
+                            for q in 0..3 {
+                                *acc += details[f][q] * u[r][dir][q];
+                            }
+                        }
+                    }
+                }
+                for r in 0..3 {
+                    c[r] += add[r] * sign;
+                }
+                continue;
+            }
+            let k = fan_update_weights(&coarse.sectors(m));
             let mut sum = [V::zero(); 3];
             for d in super::grid::NEIGHBORS {
                 let (a, b) = (2 * i as i64 + d[0], 2 * j as i64 + d[1]);
@@ -238,7 +316,7 @@ fn apply_update<V: Vector>(
                 }
             }
             for q in 0..3 {
-                c[q] += sum[q] * (sign * k[m][q]);
+                c[q] += sum[q] * (sign * k[q]);
             }
         }
     });
@@ -249,7 +327,7 @@ impl<V: Vector + Default> Decomposition<V> {
     pub fn reconstruct(&self) -> Ups<V> {
         let mut s = self.coarse.clone();
         for level in &self.levels {
-            s = Ups::wavelet_inverse_step(&s, level);
+            s = Ups::wavelet_inverse_step_with(&s, level, self.update);
         }
         s
     }
@@ -289,4 +367,104 @@ pub fn fan_update_weights(sectors: &[bool; 6]) -> [f64; 3] {
         }
     }
     s.map(|x| 0.5 / (1.0 + x))
+}
+
+/// [`stable_update_matrix`] of a fan, computed once for each of the 64 sector patterns.
+fn stable_update_for(sectors: &[bool; 6]) -> &'static UpdateMatrix {
+    static TABLE: OnceLock<Vec<UpdateMatrix>> = OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        (0..64usize)
+            .map(|m| stable_update_matrix(&std::array::from_fn(|k| m & (1 << k) != 0)))
+            .collect()
+    });
+    let mask = (0..6)
+        .filter(|&k| sectors[k])
+        .fold(0usize, |m, k| m | (1 << k));
+    &table[mask]
+}
+
+/// The update of [`Update::Stable`] for a coarse vertex whose fan is `sectors`.
+///
+/// With any update U the coarse triple is a linear function a_r · c of the fine control
+/// values around the vertex — its own triple (unscaled), its neighbours' triples (through
+/// the predictions) and the six details — and a_r is a left inverse of subdivision whatever
+/// U is. U is the choice that minimises Σ_r ‖a_r‖² (the variance of the coarse coefficients
+/// for white noise on the fine ones), subject to the condition of the thesis' update: for
+/// every detail (d, q), Σ_r U[r][d][q] (1 + S_r) = ½, S_r the total prediction weight of
+/// component r ([`fan_update_weights`] = ½ / (1 + S_r)), so that with the other end of the
+/// edge every complementary sequence sums to zero. In closed form, with M the columns of
+/// the details' functionals, H = MᵀM, b_r = Mᵀe_r (e_r the unscaling row), w_r = 1 + S_r:
+/// u_r = −H⁻¹b_r + (w_r / Σw²) (½ + H⁻¹ Σ_s w_s b_s).
+pub fn stable_update_matrix(sectors: &[bool; 6]) -> UpdateMatrix {
+    let unit = |k: usize| -> [f64; 3] { std::array::from_fn(|i| if i == k { 1.0 } else { 0.0 }) };
+    // us[r][k]: component r of the unscaled unit triple e_k.
+    let us: [[f64; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|k| unscale(unit(k))[r]));
+    let edges: Vec<usize> = (0..6)
+        .filter(|&d| sectors[d] || sectors[(d + 5) % 6])
+        .collect();
+    let mut u = [[[0.0; 3]; 6]; 3];
+    let nc = 3 * edges.len();
+    if nc == 0 {
+        return u;
+    }
+    // pm[e][q][k] / po[e][q][k]: weight of raw component k of this vertex's / the other end's
+    // triple in the prediction of component q of the detail on edge e ([`fan_update_weights`]
+    // has the orientation: this vertex is V_i for even d, V_j for odd d).
+    let mut pm = vec![[[0.0; 3]; 3]; edges.len()];
+    let mut po = pm.clone();
+    for (e, &d) in edges.iter().enumerate() {
+        let (first, shift) = if d % 2 == 0 {
+            (true, d / 2)
+        } else {
+            (false, ((d + 3) % 6) / 2)
+        };
+        for k in 0..3 {
+            let (s, z) = (unscale(unit(k)), [0.0; 3]);
+            let mine = if first {
+                new_vertex_rule(s, z, shift)
+            } else {
+                new_vertex_rule(z, s, shift)
+            };
+            let other = if first {
+                new_vertex_rule(z, s, shift)
+            } else {
+                new_vertex_rule(s, z, shift)
+            };
+            for q in 0..3 {
+                pm[e][q][k] = mine[q];
+                po[e][q][k] = other[q];
+            }
+        }
+    }
+    let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let h = DMatrix::from_fn(nc, nc, |c1, c2| {
+        let ((e1, q1), (e2, q2)) = ((c1 / 3, c1 % 3), (c2 / 3, c2 % 3));
+        let mut v = dot(&pm[e1][q1], &pm[e2][q2]);
+        if e1 == e2 {
+            v += dot(&po[e1][q1], &po[e1][q2]);
+            if q1 == q2 {
+                v += 1.0;
+            }
+        }
+        v
+    });
+    let b: [DVector<f64>; 3] =
+        std::array::from_fn(|r| DVector::from_fn(nc, |c, _| -dot(&pm[c / 3][c % 3], &us[r])));
+    let w = fan_update_weights(sectors).map(|k| 0.5 / k);
+    let ww: f64 = w.iter().map(|x| x * x).sum();
+    let chol = h.cholesky().expect("MᵀM = I + GᵀG is positive definite");
+    let hb: [DVector<f64>; 3] = std::array::from_fn(|r| chol.solve(&b[r]));
+    let mut mix = DVector::from_element(nc, 0.5);
+    for s in 0..3 {
+        mix += &hb[s] * w[s];
+    }
+    for r in 0..3 {
+        let ur = &mix * (w[r] / ww) - &hb[r];
+        for (e, &d) in edges.iter().enumerate() {
+            for q in 0..3 {
+                u[r][d][q] = ur[3 * e + q];
+            }
+        }
+    }
+    u
 }

@@ -9,6 +9,7 @@ use pssurf::ps::{Hermite, PsBasis, PsSpline};
 use pssurf::surface::{ParametricSurface, Surface, UpsSurface};
 use pssurf::triangulation::Triangulation;
 use pssurf::ups::threshold::{Shrink, ThresholdRule};
+use pssurf::ups::wavelet::Update;
 use pssurf::ups::{Lattice, LatticePolygon, Ups, UpsGrid};
 use rand::{RngExt, SeedableRng};
 
@@ -101,8 +102,9 @@ pub fn variants() -> Vec<Variant> {
             Shrink::Soft,
         ),
     ] {
+        // The stable update, as `pssurf denoise` (docs/ups.md).
         let mut dec = noisy
-            .wavelet_transform(LEVELS)
+            .wavelet_transform_with(LEVELS, Update::Stable)
             .expect("a surface subdivided LEVELS times coarsens LEVELS times");
         let stats = dec.threshold(|_, _| rule, mode);
         let (zeroed, count) = stats
