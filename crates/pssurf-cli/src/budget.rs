@@ -203,7 +203,7 @@ pub fn load_surface(path: &Path) -> Result<pssurf::surface::Surface> {
         Ok(s) => Ok(s),
         Err(
             e @ pssurf::io::FileError::Format {
-                cause: pssurf::io::FormatError::NotPssurf,
+                cause: pssurf::io::FormatError::NotPssurf | pssurf::io::FormatError::Foreign(_),
                 ..
             },
         ) => match scene_objects(path)? {

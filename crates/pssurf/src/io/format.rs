@@ -43,6 +43,9 @@ pub enum FormatError {
     /// The `format` field is missing or is not "pssurf".
     #[error("not a pssurf surface file (the field \"format\" must be \"pssurf\")")]
     NotPssurf,
+    /// Another pssurf file (or another program's), named by its `format` field.
+    #[error("not a surface file: its \"format\" is {0:?}{hint}", hint = foreign_hint(.0))]
+    Foreign(String),
     /// A version this build cannot read.
     #[error("format version {0} is not supported (this build reads version {FORMAT_VERSION})")]
     UnsupportedVersion(u64),
@@ -257,8 +260,10 @@ pub fn from_json_str(text: &str) -> Result<Surface, FormatError> {
 /// Checks the `format` and `version` fields common to surface and curve files.
 pub(crate) fn check_header(text: &str) -> Result<Header, FormatError> {
     let header: Header = serde_json::from_str(text).map_err(syntax)?;
-    if header.format.as_deref() != Some(FORMAT_NAME) {
-        return Err(FormatError::NotPssurf);
+    match header.format.as_deref() {
+        Some(FORMAT_NAME) => {}
+        Some(other) => return Err(FormatError::Foreign(other.to_string())),
+        None => return Err(FormatError::NotPssurf),
     }
     match header.version {
         Some(v) if v == FORMAT_VERSION as u64 => Ok(header),
@@ -1122,4 +1127,15 @@ pub fn save(surface: &Surface, path: &Path) -> Result<(), FileError> {
         path: path.to_path_buf(),
         cause,
     })
+}
+
+/// What a file of another `format` is, for [`FormatError::Foreign`].
+fn foreign_hint(format: &str) -> &'static str {
+    match format {
+        "pssurf-wavelet" => {
+            " (wavelet coefficients as `pssurf wavelet -o` writes them: a report, not read back)"
+        }
+        "pssurf-scene" => " (a scene of several surfaces: `pssurf info` lists them)",
+        _ => " (pssurf surface files have \"pssurf\")",
+    }
 }

@@ -83,6 +83,10 @@ fn bad_files_are_rejected_with_their_location() {
         err(r#"{"type": "FeatureCollection"}"#),
         FormatError::NotPssurf
     );
+    // Another format is named, with what it is when it is pssurf's own.
+    let e = err(r#"{"format": "pssurf-wavelet", "version": 1, "levels": 2}"#);
+    assert_eq!(e, FormatError::Foreign("pssurf-wavelet".into()));
+    assert!(e.to_string().contains("pssurf wavelet -o"), "{e}");
     assert_eq!(
         err(&good.replace("\"version\":1", "\"version\":2")),
         FormatError::UnsupportedVersion(2)
