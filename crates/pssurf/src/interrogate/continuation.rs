@@ -248,7 +248,8 @@ impl Follow {
                 // The edge the chord leaves by first; near a corner the curve itself may
                 // leave by the next one.
                 for exit in exits {
-                    if let Some((e_uv, e_s)) = edge_root(f, exit, uv, next_uv, self.tolerance) {
+                    if let Some((e_uv, e_s)) = edge_root(f, exit, uv, next_uv, self.tolerance, 0.0)
+                    {
                         push(&mut out, e_uv, e_s.point);
                         seen(uv, e_uv);
                         out.end = End::Edge(exit.edge);
@@ -354,13 +355,15 @@ pub(crate) fn correct(
 
 /// The zero of f on the edge `exit` near where the segment a → b crosses it: a bracket on the
 /// edge grown from the crossing, then the Illinois regula falsi. `None` if f has no sign
-/// change on the edge near the crossing.
+/// change on the edge near the crossing. `slack` widens "near" (in the parameter plane) for
+/// segments whose ends are only close to the curve (the 4-/8-point walks); 0 for points on it.
 pub(crate) fn edge_root(
     f: &mut dyn FnMut(Point2<f64>) -> Option<Sample>,
     exit: Exit,
     a: Point2<f64>,
     b: Point2<f64>,
     tolerance: f64,
+    slack: f64,
 ) -> Option<(Point2<f64>, Sample)> {
     let (c, d) = (exit.from, exit.to);
     let (oa, ob) = (orient_exact(c, d, a), orient_exact(c, d, b));
@@ -377,9 +380,9 @@ pub(crate) fn edge_root(
     if f0.abs() <= tolerance {
         return f(at(s0)).map(|x| (at(s0), x));
     }
-    // The curve crosses the edge within about a chord of where the chord does; a root
-    // farther along the edge belongs to another crossing.
-    let chord = (b - a).norm();
+    // The curve crosses the edge within about a chord (plus the slack) of where the chord
+    // does; a root farther along the edge belongs to another crossing.
+    let chord = (b - a).norm() + slack;
     let mut delta = (chord / len2.sqrt()).max(1e-12);
     let widest = 2.0 * delta;
     let bracket = loop {

@@ -447,3 +447,63 @@ fn no_branch_crawls_near_critical_points_of_the_field() {
     assert!(points < 100_000, "{points}");
     assert!(branches_stopped < points / 100, "{branches_stopped}");
 }
+
+/// z = x²/2 + y²/4 on the hexagon of side 1 on a lattice of side 1/4 (the domain of
+/// `pssurf new ups --sides 6 --size 4`, centred), reproduced exactly.
+fn quadratic_on_hexagon() -> Surface {
+    let h = 0.5 * 3f64.sqrt();
+    let mut pts = Vec::new();
+    for j in -4i32..=4 {
+        for i in -4i32..=4 {
+            if (i + j).abs() <= 4 {
+                pts.push(Point2::new(
+                    0.25 * (i as f64 + 0.5 * j as f64),
+                    0.25 * j as f64 * h,
+                ));
+            }
+        }
+    }
+    let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
+    Surface::Functional(
+        PsSpline::interpolate(basis, |p| Hermite {
+            value: 0.5 * p.x * p.x + 0.25 * p.y * p.y,
+            dx: p.x,
+            dy: 0.5 * p.y,
+        })
+        .unwrap(),
+    )
+}
+
+#[test]
+fn walks_close_level_loops_of_k_on_a_quadratic_graph() {
+    // K = ab/W⁴ (a = 1, b = 1/2) is continuous; K = 0.4 is one ellipse inside the hexagon.
+    // The curve meets split lines at ~13°, where a walk's step (within the walk tolerance
+    // of the curve, not on it) crossed the edge farther from the root than edge_root
+    // accepted: the four-point walk stopped there, leaving 8 open curves and 8 "gaps".
+    let s = quadratic_on_hexagon();
+    let k = SurfaceField::Curvature(CurvatureQuantity::Gaussian);
+    for method in [TraceMethod::FourPoint, TraceMethod::EightPoint] {
+        let opts = ZeroSetOptions {
+            method,
+            ..Default::default()
+        };
+        let set = &level_lines(&s, &k, &[0.4], &opts).unwrap()[0];
+        assert!(
+            set.gaps.is_empty() && set.stuck == 0,
+            "{method:?}: {} gaps, {} stopped",
+            set.gaps.len(),
+            set.stuck
+        );
+        assert_eq!(set.curves.len(), 1, "{method:?}");
+        assert!(set.curves[0].closed, "{method:?}");
+        let tol = opts.walk_tolerance * set.tolerance / opts.tolerance;
+        assert!(set.curves[0].uvs.len() > 100);
+        for uv in &set.curves[0].uvs {
+            let (kk, _) = k_and_h(1.0, 0.5, *uv);
+            assert!(
+                (kk - 0.4).abs() <= tol * (1.0 + 1e-9),
+                "{method:?} {uv:?} {kk}"
+            );
+        }
+    }
+}

@@ -61,8 +61,21 @@ pub(crate) fn walk(
         if !region.contains(next) {
             let mut value = |p: Point2<f64>| f(p);
             for exit in region.exits(uv, next) {
-                let root =
-                    super::continuation::edge_root(&mut value, exit, uv, next, w.edge_tolerance);
+                // The walk's points are only within w.tolerance of the curve, so where the
+                // curve meets the edge at a shallow angle it crosses it well beyond a chord
+                // of where the step does: as far along the edge as f takes to change by
+                // the tolerance (twice, for the crossing's own |f| ≤ tolerance).
+                let edge = exit.to - exit.from;
+                let rate = sample.grad.dot(&edge).abs() / edge.norm();
+                let slack = (2.0 * w.tolerance / rate).min(edge.norm());
+                let root = super::continuation::edge_root(
+                    &mut value,
+                    exit,
+                    uv,
+                    next,
+                    w.edge_tolerance,
+                    slack,
+                );
                 if let Some((e_uv, e_s)) = root {
                     out.uvs.push(e_uv);
                     out.points.push(e_s.point);
