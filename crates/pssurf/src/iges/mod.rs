@@ -7,9 +7,11 @@
 //!   Hollerith strings that contain delimiters, `D` exponents, blank lines, and comments after
 //!   a record delimiter.
 //! - Surfaces become [`NurbsSurface`]s in the file's frame (transformation chains applied,
-//!   coordinates scaled to millimetres). A trimmed or bounded surface is imported as its
-//!   underlying surface, with its trimming loops kept as curves in its parameter plane
-//!   (trimming is not applied: the report says so).
+//!   coordinates scaled to millimetres), on their declared parameter range (a 128's
+//!   U(0), U(1), V(0), V(1), which may be narrower than its knots). A trimmed or bounded
+//!   surface is imported as its underlying surface, placed by its own transformation after
+//!   the surface's, with its trimming loops kept as curves in its parameter plane (trimming
+//!   is not applied: the report says so).
 //! - Other entities are counted by type and listed, not refused.
 //!
 //! Every error names the line of the file and the reason; malformed files never panic.
@@ -156,7 +158,11 @@ struct File<'a> {
 }
 
 /// An affine map x ↦ R x + t.
-#[derive(Clone, Copy)]
+/// Where a trimmed surface (144 or 143) places its base surface: its transformation and its
+/// trimming loops in the parameter plane.
+type Placement = (Affine, Vec<Vec<Point2<f64>>>);
+
+#[derive(Clone, Copy, PartialEq)]
 struct Affine {
     r: Matrix3<f64>,
     t: Vector3<f64>,
@@ -211,6 +217,14 @@ impl Params {
                     k + 1
                 ),
             )),
+        }
+    }
+
+    /// Field `k` when it is a number (not empty, not missing).
+    fn number(&self, k: usize) -> Option<f64> {
+        match self.fields.get(k).map(|f| &f.field) {
+            Some(Field::Number(x)) => Some(*x),
+            _ => None,
         }
     }
 
@@ -336,8 +350,11 @@ impl File<'_> {
         ))
     }
 
-    /// A 128 entity as a NURBS surface in millimetres, transformed.
-    fn surface(&self, e: &Entry) -> Result<NurbsSurface, IgesError> {
+    /// A 128 entity as a NURBS surface in millimetres, transformed by its own chain and then
+    /// by `outer` (the transformation of a trimmed or bounded surface on it), on its declared
+    /// parameter range; with `false` when that range is not a rectangle inside the knot
+    /// domain and the whole knot domain was kept.
+    fn surface(&self, e: &Entry, outer: &Affine) -> Result<(NurbsSurface, bool), IgesError> {
         let p = self.params(e)?;
         let (k1, k2) = (
             p.count(1, 0, MAX_NET as i64)?,
@@ -364,7 +381,11 @@ impl File<'_> {
         let kv = reals(k2 + m2 + 2)?;
         let w = reals(nu * nv)?;
         let xyz = reals(3 * nu * nv)?;
-        let map = self.transform(e)?;
+        // U(0), U(1), V(0), V(1) follow the control points.
+        let range = (k..k + 4)
+            .map(|i| p.number(i))
+            .collect::<Option<Vec<f64>>>();
+        let map = self.transform(e)?.then_outer(outer);
         // IGES lists u fastest; our nets run along v fastest (P_ij at i·n_v + j).
         let mut points = vec![Vector3::zeros(); nu * nv];
         let mut weights = vec![1.0; nu * nv];
@@ -377,8 +398,15 @@ impl File<'_> {
             }
         }
         let weights = (!polynomial || weights.iter().any(|&x| x != weights[0])).then_some(weights);
-        NurbsSurface::try_new([m1, m2], [ku, kv], [nu, nv], points, weights)
-            .map_err(|err| IgesError::at(e.line, format!("surface (128): {err}")))
+        let whole = NurbsSurface::try_new([m1, m2], [ku, kv], [nu, nv], points, weights)
+            .map_err(|err| IgesError::at(e.line, format!("surface (128): {err}")))?;
+        let Some(r) = range else {
+            return Ok((whole, true));
+        };
+        Ok(match whole.restricted([r[0], r[1]], [r[2], r[3]]) {
+            Some(s) => (s, true),
+            None => (whole, false),
+        })
     }
 
     /// A 126 entity as a NURBS curve (model coordinates, or parameter-plane ones when
@@ -463,7 +491,10 @@ impl File<'_> {
 
     /// Imports every entity into `model`.
     fn import(&self, model: &mut IgesModel) -> Result<(), IgesError> {
-        let mut trimmed: BTreeMap<usize, Vec<Vec<Point2<f64>>>> = BTreeMap::new();
+        // Per base surface: the transformation of the (first) trimmed or bounded surface on it,
+        // and the loops.
+        let mut trimmed: BTreeMap<usize, Placement> = BTreeMap::new();
+        let mut placed_twice = Vec::new();
         let mut in_loops = std::collections::BTreeSet::new();
         let mut skipped_loops = 0;
         // Trimmed (144) and bounded (143) surfaces: their base surfaces and loops.
@@ -481,15 +512,18 @@ impl File<'_> {
                     for i in 0..inner {
                         b.push(p.count(5 + i, 1, i64::MAX)?);
                     }
-                    trimmed.entry(base).or_default();
+                    let map = self.transform(e)?;
                     let loops = self.loops_142(&b, e.line, &mut in_loops, &mut skipped_loops)?;
-                    trimmed.get_mut(&base).expect("inserted").extend(loops);
+                    if let Some(kept) = place(&mut trimmed, base, map, e.de, &mut placed_twice) {
+                        kept.extend(loops);
+                    }
                 }
                 143 => {
                     let p = self.params(e)?;
                     let base = p.count(2, 1, i64::MAX)?;
                     let n = p.count(3, 0, 1_000_000)?;
-                    trimmed.entry(base).or_default();
+                    let map = self.transform(e)?;
+                    let mut loops = Vec::new();
                     // 141 boundaries: their parameter-space curves.
                     for i in 0..n {
                         let b = p.count(4 + i, 1, i64::MAX)?;
@@ -520,26 +554,43 @@ impl File<'_> {
                             at += 3 + kp;
                         }
                         if ok && lp.len() >= 2 {
-                            trimmed.get_mut(&base).expect("inserted").push(lp);
+                            loops.push(lp);
                         } else {
                             skipped_loops += 1;
                         }
                     }
+                    if let Some(kept) = place(&mut trimmed, base, map, e.de, &mut placed_twice) {
+                        kept.extend(loops);
+                    }
                 }
                 _ => {}
             }
+        }
+        if !placed_twice.is_empty() {
+            model.warnings.push(format!(
+                "{} trimmed or bounded surfaces place a surface a second time with another transformation, not imported: {}",
+                placed_twice.len(),
+                placed_twice.join(", ")
+            ));
         }
         if skipped_loops > 0 {
             model.warnings.push(format!(
                 "{skipped_loops} trimming loops were not kept (no parameter-space curve of a supported type)"
             ));
         }
+        let mut whole_domain = Vec::new();
         for (k, e) in self.entries.iter().enumerate() {
             let de = 2 * k + 1;
             match e.kind {
                 128 => {
-                    let surface = self.surface(e)?;
-                    let loops = trimmed.remove(&de);
+                    let (outer, loops) = match trimmed.remove(&de) {
+                        Some((map, loops)) => (map, Some(loops)),
+                        None => (Affine::identity(), None),
+                    };
+                    let (surface, in_range) = self.surface(e, &outer)?;
+                    if !in_range {
+                        whole_domain.push(format!("D{de}"));
+                    }
                     model.surfaces.push(ImportedSurface {
                         entry: de,
                         name: if e.label.is_empty() {
@@ -558,6 +609,14 @@ impl File<'_> {
                 126 | 124 | 144 | 142 | 143 | 141 | 102 | 110 => {}
                 other => *model.unknown.entry(other).or_default() += 1,
             }
+        }
+        if !whole_domain.is_empty() {
+            model.warnings.push(format!(
+                "{} surfaces declare a parameter range that is not a rectangle inside their knot domain; the whole knot domain is imported: {}{}",
+                whole_domain.len(),
+                whole_domain[..whole_domain.len().min(5)].join(", "),
+                if whole_domain.len() > 5 { ", …" } else { "" }
+            ));
         }
         if !trimmed.is_empty() {
             let bases: Vec<String> = trimmed.keys().take(5).map(|b| format!("D{b}")).collect();
@@ -610,6 +669,24 @@ impl File<'_> {
         }
         Ok(out)
     }
+}
+
+/// Records that the trimmed or bounded surface `de` stands on `base`, placed by `map`: its
+/// loops, to be extended, or `None` (noted in `twice`) when another one already placed `base`
+/// with a different transformation (the first placement is imported).
+fn place<'m>(
+    trimmed: &'m mut BTreeMap<usize, Placement>,
+    base: usize,
+    map: Affine,
+    de: usize,
+    twice: &mut Vec<String>,
+) -> Option<&'m mut Vec<Vec<Point2<f64>>>> {
+    let (first, loops) = trimmed.entry(base).or_insert((map, Vec::new()));
+    if *first != map {
+        twice.push(format!("D{de}"));
+        return None;
+    }
+    Some(loops)
 }
 
 /// Marks the components of a composite curve as parts of a loop.

@@ -236,6 +236,38 @@ impl NurbsSurface {
         Some([curve(0, along_u)?, curve(1, along_v)?])
     }
 
+    /// The same surface on the rectangle [u₀, u₁] × [v₀, v₁] of its domain, with the same
+    /// parametrisation (s′(u, v) = s(u, v) there): each end inside the domain is inserted as a
+    /// knot until it has multiplicity p (Boehm's insertion on the homogeneous net, *The NURBS
+    /// Book* A5.1), the control points whose basis functions vanish on the rectangle are
+    /// dropped and the new ends are clamped. An end within 1e-9 of the domain's width of a
+    /// knot is moved onto it: CAD files write about ten digits, and a sliver piece between
+    /// the end and the knot would be noise. `None` when the rectangle is empty or not inside
+    /// the domain (to that tolerance).
+    pub fn restricted(&self, u: [f64; 2], v: [f64; 2]) -> Option<NurbsSurface> {
+        let [nu, nv] = self.counts();
+        // Lines along u (one per j), clipped; then lines along v (one per i), clipped.
+        let lines: Vec<Vec<[f64; 4]>> = (0..nv)
+            .map(|j| (0..nu).map(|i| self.homogeneous[i * nv + j]).collect())
+            .collect();
+        let (ku, lines) = clip(&self.knots[0], u, lines)?;
+        let nu = lines[0].len();
+        let lines: Vec<Vec<[f64; 4]>> = (0..nu)
+            .map(|i| (0..nv).map(|j| lines[j][i]).collect())
+            .collect();
+        let (kv, lines) = clip(&self.knots[1], v, lines)?;
+        let nv = lines[0].len();
+        let (mut points, mut weights) = (Vec::with_capacity(nu * nv), Vec::with_capacity(nu * nv));
+        for h in lines.iter().flatten() {
+            // A polynomial net keeps w = 1 exactly (α + (1 − α) need not round to 1).
+            let w = if self.rational { h[3] } else { 1.0 };
+            points.push(Vector3::new(h[0], h[1], h[2]) / w);
+            weights.push(w);
+        }
+        let weights = self.rational.then_some(weights);
+        NurbsSurface::try_new(self.degree(), [ku, kv], [nu, nv], points, weights).ok()
+    }
+
     /// The spans (i, j) of piece `k`.
     fn piece_spans(&self, k: usize) -> (usize, usize) {
         let sv = self.knots[1].spans();
@@ -294,6 +326,75 @@ pub(crate) fn check_net(
         return Err(NurbsError::Weight(i, weights[i]));
     }
     Ok(weights)
+}
+
+/// Lines of homogeneous control points (w P, w), each along one parameter direction.
+type HomogeneousLines = Vec<Vec<[f64; 4]>>;
+
+/// The knots and lines of homogeneous control points (each line along this direction) of the
+/// same B-spline on [a, b] ⊂ [U_p, U_n]; see [`NurbsSurface::restricted`].
+fn clip(
+    knots: &KnotVector,
+    [a, b]: [f64; 2],
+    mut lines: HomogeneousLines,
+) -> Option<(Vec<f64>, HomogeneousLines)> {
+    let (p, n) = (knots.degree(), knots.count());
+    let mut u = knots.knots().to_vec();
+    let (lo, hi) = knots.domain();
+    let tol = 1e-9 * (hi - lo);
+    let snap = |t: f64| {
+        u[p..=n]
+            .iter()
+            .copied()
+            .find(|&k| (k - t).abs() <= tol)
+            .unwrap_or(t)
+    };
+    let (a, b) = (snap(a), snap(b));
+    if !(a.is_finite() && b.is_finite() && lo <= a && a < b && b <= hi) {
+        return None;
+    }
+    for t in [a, b] {
+        if t == lo || t == hi {
+            continue;
+        }
+        let times = u.iter().filter(|&&k| k == t).count();
+        for _ in times..p {
+            // The span U_k ≤ t < U_{k+1} (p ≤ k < n since U_p < t < U_n).
+            let k = u.partition_point(|&x| x <= t) - 1;
+            let alpha: Vec<f64> = (k + 1 - p..=k)
+                .map(|i| (t - u[i]) / (u[i + p] - u[i]))
+                .collect();
+            for line in lines.iter_mut() {
+                let mut q = Vec::with_capacity(line.len() + 1);
+                q.extend_from_slice(&line[..=k - p]);
+                for (al, i) in alpha.iter().zip(k + 1 - p..=k) {
+                    q.push(std::array::from_fn(|c| {
+                        al * line[i][c] + (1.0 - al) * line[i - 1][c]
+                    }));
+                }
+                q.extend_from_slice(&line[k..]);
+                *line = q;
+            }
+            u.insert(k + 1, t);
+        }
+    }
+    // The new U_p is the last knot a, the new U_n the first knot b: the basis functions
+    // before and after vanish on [a, b], the kept ones are unchanged.
+    let first = u.iter().rposition(|&k| k == a)? - p;
+    let end = u.iter().position(|&k| k == b)?;
+    let mut kept = u[first..=end + p].to_vec();
+    // The outermost knots never enter the basis on the domain: clamping is exact.
+    if a > lo {
+        kept[0] = a;
+    }
+    if b < hi {
+        *kept.last_mut()? = b;
+    }
+    let lines = lines
+        .into_iter()
+        .map(|line| line[first..end].to_vec())
+        .collect();
+    Some((kept, lines))
 }
 
 /// (w x, w y, w z, w) of each control point.

@@ -631,3 +631,87 @@ fn torsion_across_an_interior_knot_and_of_planar_curves() {
     assert_eq!(line.curvature(0.5), Some(0.0));
     assert_eq!(line.torsion(1.5), None);
 }
+
+/// A sub-interval of a knot vector's domain: its ends random, knots or the domain's ends.
+fn sub_range(r: &mut rand_chacha::ChaCha8Rng, kv: &KnotVector) -> [f64; 2] {
+    let (lo, hi) = kv.domain();
+    let inside: Vec<f64> = kv
+        .knots()
+        .iter()
+        .copied()
+        .filter(|&k| k >= lo && k <= hi)
+        .collect();
+    let pick = |r: &mut rand_chacha::ChaCha8Rng| match r.random_range(0..3) {
+        0 => uniform(r, lo, hi),
+        1 => inside[r.random_range(0..inside.len())],
+        _ => [lo, hi][r.random_range(0..2usize)],
+    };
+    loop {
+        let (a, b) = (pick(&mut *r), pick(&mut *r));
+        if a != b {
+            return [a.min(b), a.max(b)];
+        }
+    }
+}
+
+#[test]
+fn a_restricted_surface_is_the_same_surface_on_the_sub_rectangle() {
+    let mut r = rng(1707);
+    let mut worst = 0.0f64;
+    for _ in 0..60 {
+        let case = random_surface(&mut r);
+        let s = &case.s;
+        let (u, v) = (
+            sub_range(&mut r, &s.knot_vectors()[0]),
+            sub_range(&mut r, &s.knot_vectors()[1]),
+        );
+        let t = s.restricted(u, v).unwrap();
+        let (lo, hi) = t.domain_bounds();
+        assert_eq!([lo.x, hi.x, lo.y, hi.y], [u[0], u[1], v[0], v[1]]);
+        assert!(t.degree() == s.degree() && t.is_rational());
+        // The same parametrisation: equal jets (relative to the quantity, and to 1).
+        for _ in 0..20 {
+            let uv = Point2::new(uniform(&mut r, lo.x, hi.x), uniform(&mut r, lo.y, hi.y));
+            let (a, b) = (t.jet(uv).unwrap().jet, s.jet(uv).unwrap().jet);
+            let pairs = [
+                (a.value, b.value),
+                (a.dx, b.dx),
+                (a.dy, b.dy),
+                (a.dxx, b.dxx),
+                (a.dxy, b.dxy),
+                (a.dyy, b.dyy),
+            ];
+            for (k, (x, y)) in pairs.iter().enumerate() {
+                let e = (x - y).norm() / y.norm().max(1.0);
+                worst = worst.max(e);
+                assert!(e < 1e-10, "order {k} at {uv}: {x} vs {y} ({e:e})");
+            }
+        }
+        // Clamped at new ends: the corner is the first control point.
+        let (slo, _) = s.domain_bounds();
+        if u[0] > slo.x && v[0] > slo.y {
+            let corner = s.point(Point2::new(u[0], v[0])).unwrap();
+            assert!((t.points()[0] - corner).norm() <= 1e-12 * corner.norm().max(1.0));
+        }
+    }
+    eprintln!("worst relative difference {worst:e}");
+    // A polynomial surface stays polynomial, with weights exactly 1.
+    let wavy = wavy_bicubic();
+    let poly = NurbsSurface::try_new(
+        wavy.degree(),
+        [
+            wavy.knot_vectors()[0].knots().to_vec(),
+            wavy.knot_vectors()[1].knots().to_vec(),
+        ],
+        wavy.counts(),
+        wavy.points().to_vec(),
+        None,
+    )
+    .unwrap();
+    let t = poly.restricted([0.3, 2.2], [0.5, 1.0]).unwrap();
+    assert!(!t.is_rational() && t.weights().iter().all(|&w| w == 1.0));
+    // An empty rectangle, or one reaching outside the domain, is refused.
+    assert!(poly.restricted([1.0, 1.0], [0.0, 2.0]).is_none());
+    assert!(poly.restricted([-0.5, 1.0], [0.0, 2.0]).is_none());
+    assert!(poly.restricted([0.5, 1.0], [0.0, f64::NAN]).is_none());
+}
