@@ -211,7 +211,7 @@ pub enum LocalEditError {
     #[error("{0}")]
     BadRequest(String),
     /// The point lies outside the domain.
-    #[error("the point ({0}, {1}) lies outside the domain")]
+    #[error("the point ({}, {}) lies outside the domain", crate::text::Short(*.0), crate::text::Short(*.1))]
     Outside(f64, f64),
     /// The surface is singular at the point.
     #[error("the surface is singular at the point: its curvature is undefined there")]

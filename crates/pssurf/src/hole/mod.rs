@@ -117,7 +117,7 @@ pub enum HoleError {
         distance: f64,
     },
     /// A tolerance outside (0, 1).
-    #[error("the tolerance must be a number between 0 and 1 (relative to the model size), not {0}")]
+    #[error("the tolerance must be a number between 0 and 1 (relative to the model size), not {}", crate::text::Short(*.0))]
     BadTolerance(f64),
     /// An angle tolerance outside (0°, 90°).
     #[error("the angle tolerance must be between 0 and 90 degrees, not {0}")]

@@ -157,7 +157,7 @@ pub struct FieldLine {
 #[derive(Clone, Copy, Debug, Error, PartialEq)]
 pub enum FieldLineError {
     /// The seed lies outside the domain.
-    #[error("the seed ({0}, {1}) lies outside the domain")]
+    #[error("the seed ({}, {}) lies outside the domain", crate::text::Short(*.0), crate::text::Short(*.1))]
     Outside(f64, f64),
     /// The field has no direction at the seed.
     #[error("no {family} passes through ({u}, {v}): the seed is at {why}")]

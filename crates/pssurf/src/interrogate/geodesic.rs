@@ -98,7 +98,7 @@ pub struct ShortestGeodesic {
 #[derive(Clone, Copy, Debug, Error, PartialEq)]
 pub enum GeodesicError {
     /// A point lies outside the domain.
-    #[error("the point ({0}, {1}) lies outside the domain")]
+    #[error("the point ({}, {}) lies outside the domain", crate::text::Short(*.0), crate::text::Short(*.1))]
     Outside(f64, f64),
     /// The surface is singular at the start.
     #[error("the surface is singular at ({0}, {1})")]

@@ -113,7 +113,7 @@ pub struct ProbeReport {
 #[derive(Clone, Copy, Debug, Error, PartialEq)]
 pub enum ProbeError {
     /// Outside the domain.
-    #[error("the point ({0}, {1}) lies outside the domain")]
+    #[error("the point ({}, {}) lies outside the domain", crate::text::Short(*.0), crate::text::Short(*.1))]
     Outside(f64, f64),
     /// The surface is singular there.
     #[error("the surface is singular at ({0}, {1}): no normal, no curvature")]

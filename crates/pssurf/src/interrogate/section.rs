@@ -46,7 +46,7 @@ pub struct SectionCurve {
 #[derive(Clone, Copy, Debug, Error, PartialEq)]
 pub enum SectionError {
     /// The start lies outside the domain.
-    #[error("the start point ({0}, {1}) lies outside the domain")]
+    #[error("the start point ({}, {}) lies outside the domain", crate::text::Short(*.0), crate::text::Short(*.1))]
     Outside(f64, f64),
     /// The plane's normal is zero or not finite, or the options are not positive.
     #[error("the plane normal must be a non-zero finite vector and step, length positive")]

@@ -98,7 +98,7 @@ pub enum FairError {
     #[error("fairing works on PS, UPS and NURPS surfaces, not on a {0}")]
     NotPs(&'static str),
     /// A weight that is negative, not finite or beyond 1e12.
-    #[error("the weight must be a number from 0 to 1e12, not {0}")]
+    #[error("the weight must be a number from 0 to 1e12, not {}", crate::text::Short(*.0))]
     BadWeight(f64),
     /// Every vertex is on the boundary.
     #[error("every vertex lies on the boundary: there is nothing to fair")]

@@ -135,7 +135,7 @@ pub enum PsError {
         weight: f64,
     },
     /// The point lies outside the triangulated domain.
-    #[error("the point ({x}, {y}) lies outside the domain")]
+    #[error("the point ({}, {}) lies outside the domain", crate::text::Short(*x), crate::text::Short(*y))]
     OutsideDomain {
         /// The first coordinate of the rejected point.
         x: f64,

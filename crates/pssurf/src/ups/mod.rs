@@ -49,7 +49,7 @@ pub enum UpsError {
     )]
     UnsupportedSides(usize),
     /// The base must be positive and finite (and the origin finite).
-    #[error("the lattice base must be a positive finite number, not {0}")]
+    #[error("the lattice base must be a positive finite number, not {}", crate::text::Short(*.0))]
     InvalidBase(f64),
     /// The block matrix would be too large.
     #[error(
