@@ -501,7 +501,7 @@ impl HoleFill {
     /// One refinement step (5.3.2): the domain is subdivided, each new boundary vertex gets
     /// α_k by (5.24) and β_k by (5.26) — or from subdivision where its edge was already within
     /// the tolerance (5.3.3) — and then the α's of every vertex on the fitted edges are fitted
-    /// again together, side by side ([`Self::refit_side_alphas`]). The β's and the interpolated
+    /// again together, side by side (`refit_side_alphas`). The β's and the interpolated
     /// data (position, tangent, normal) of the old vertices are kept. The instant-update patch
     /// is subdivided and its boundary overwritten.
     ///

@@ -390,7 +390,7 @@ fn stable_update_for(sectors: &[bool; 6]) -> &'static UpdateMatrix {
 /// the predictions) and the six details — and a_r is a left inverse of subdivision whatever
 /// U is. U is the choice that minimises Σ_r ‖a_r‖² (the variance of the coarse coefficients
 /// for white noise on the fine ones), subject to the condition of the thesis' update: for
-/// every detail (d, q), Σ_r U[r][d][q] (1 + S_r) = ½, S_r the total prediction weight of
+/// every detail (d, q), `Σ_r U[r][d][q] (1 + S_r) = ½`, S_r the total prediction weight of
 /// component r ([`fan_update_weights`] = ½ / (1 + S_r)), so that with the other end of the
 /// edge every complementary sequence sums to zero. In closed form, with M the columns of
 /// the details' functionals, H = MᵀM, b_r = Mᵀe_r (e_r the unscaling row), w_r = 1 + S_r:
