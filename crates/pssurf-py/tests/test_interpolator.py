@@ -117,6 +117,8 @@ def test_shapes_follow_scipy(rng):
         ((np.full((3, 1), 0.5), np.full((1, 5), 0.4)), {}),
         ((np.full((2, 3, 2), 0.45),), {}),
         ((np.array([[0.5, 0.5]]),), {}),
+        (([0.5, 0.5],), {}),
+        ((np.array([0.3, 0.4, 0.5, 0.6]),), {}),
     ]
     for args, kw in cases:
         assert f(*args, **kw).shape == ct(*args, **kw).shape, args

@@ -148,6 +148,10 @@ class PsInterpolator:
         """Broadcast query coordinates: (flat x, flat y, result shape)."""
         if y is None:
             xi = _float_array(x, "xi")
+            if xi.ndim == 1 and xi.size % 2 == 0:
+                # As SciPy's interpolators: a flat xi holds points one after another, so
+                # f([x, y]) is one point of shape (1,).
+                xi = xi.reshape(-1, 2)
             if xi.ndim == 0 or xi.shape[-1] != 2:
                 raise ValueError(f"xi must have shape (..., 2), not {xi.shape}")
             shape = xi.shape[:-1]
