@@ -1107,3 +1107,16 @@ fn one_surface_of_a_scene_is_named_with_its_index() {
     let msg = fails(&["fairness", &format!("{scene}#12")]);
     assert!(msg.contains("objects 0 to 11"), "{msg}");
 }
+
+/// `plot` writes PNG only: a name ending in another extension is refused, and nothing is
+/// written (it wrote PNG bytes into x.jpg).
+#[test]
+fn plot_refuses_a_picture_name_that_is_not_png() {
+    let d = tmp();
+    let surf = s(&d.path().join("u.json"));
+    ok_report(&["new", "ups", "--sides", "3", "--size", "2", "-o", &surf]);
+    let jpg = d.path().join("x.jpg");
+    let msg = fails(&["plot", &surf, "-o", &s(&jpg)]);
+    assert!(msg.contains(".png") && !jpg.exists(), "{msg}");
+    ok_report(&["plot", &surf, "-o", &s(&d.path().join("x.PNG"))]);
+}

@@ -327,8 +327,17 @@ pub fn read_lines(path: &std::path::Path) -> Result<Vec<pssurf::interrogate::Sur
     pssurf::io::read_curves_csv(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }
 
-/// Writes a picture as PNG, atomically.
+/// Writes a picture as PNG, atomically; a name with another extension (`.jpg`) is refused
+/// rather than given PNG bytes.
 pub fn write_png(picture: &pssurf_viz::Picture, path: &std::path::Path) -> Result<()> {
+    if let Some(ext) = path.extension().and_then(|e| e.to_str())
+        && !ext.eq_ignore_ascii_case("png")
+    {
+        anyhow::bail!(
+            "{}: pictures are written as PNG; give a name ending in .png",
+            path.display()
+        );
+    }
     crate::output::write_output(path, Durability::Atomic, |w| {
         picture.write_png(w).map_err(|e| anyhow::anyhow!(e))
     })

@@ -1061,10 +1061,15 @@ fn text_limited(
             format!("longer than the {max_bytes} bytes allowed"),
         )));
     }
-    String::from_utf8(bytes).map_err(|_| FileError::Format {
+    let mut text = String::from_utf8(bytes).map_err(|_| FileError::Format {
         path: path.to_path_buf(),
         cause: FormatError::NotText,
-    })
+    })?;
+    // A byte-order mark (some Windows editors write one) is not part of the JSON.
+    if text.starts_with('\u{feff}') {
+        text.drain(..'\u{feff}'.len_utf8());
+    }
+    Ok(text)
 }
 
 /// The two encodings of a surface file.

@@ -926,3 +926,22 @@ fn scenes_carry_mesh_objects() {
         assert!(e.contains(words) && e.contains("objects[1]"), "{e}");
     }
 }
+
+/// A JSON surface file that starts with a UTF-8 byte-order mark (as some Windows editors
+/// write) loads as the same surface (it was refused at line 1, column 1; CSV files already
+/// accepted the mark).
+#[test]
+fn a_byte_order_mark_before_the_json_is_ignored() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = &sample_surfaces()[0];
+    let path = dir.path().join("s.json");
+    save(s, &path).unwrap();
+    let mut bytes = "\u{feff}".as_bytes().to_vec();
+    bytes.extend(std::fs::read(&path).unwrap());
+    let marked = dir.path().join("bom.json");
+    std::fs::write(&marked, &bytes).unwrap();
+    assert_eq!(
+        to_json_string(&load(&marked).unwrap()),
+        to_json_string(&load(&path).unwrap())
+    );
+}
