@@ -160,6 +160,12 @@ fn the_comb_of_an_arc_is_constant() {
         let msg = fails(&["curve", &point, "--comb", "-o", &s(&out)]);
         assert!(msg.contains("curvature") && !out.exists(), "{msg}");
     }
+    // info says so too (it printed "curvature inf to -inf", the empty range).
+    let info = ok(&["info", &point]);
+    assert!(
+        info.contains("undefined") && !info.contains("inf to"),
+        "{info}"
+    );
 }
 
 /// `--comb` on polylines: points on circles (a polygon, and two traced curves in the format

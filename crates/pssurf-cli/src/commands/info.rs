@@ -280,11 +280,16 @@ fn curve_info(args: &InfoArgs) -> Result<()> {
         None => outln!("inflections          - (a space curve)")?,
     }
     let ct = info.curvature_torsion;
-    outln!(
-        "curvature            {} to {} (32 samples per span)",
-        ct.curvature[0],
-        ct.curvature[1]
-    )?;
+    if ct.curvature[0] <= ct.curvature[1] {
+        outln!(
+            "curvature            {} to {} (32 samples per span)",
+            ct.curvature[0],
+            ct.curvature[1]
+        )?;
+    } else {
+        // No sample had a defined curvature (min > max: the empty range).
+        outln!("curvature            undefined (the curve does not move: zero speed everywhere)")?;
+    }
     match ct.torsion {
         Some([a, b]) => outln!("torsion              {a} to {b}")?,
         None => outln!("torsion              - (no osculating plane: a straight line)")?,
