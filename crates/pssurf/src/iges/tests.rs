@@ -67,6 +67,28 @@ fn basis(u: &[f64], i: usize, p: usize, t: f64, last: usize) -> f64 {
         + a(u[i + p + 1] - t, u[i + p + 1] - u[i + 1]) * basis(u, i + 1, p - 1, t, last)
 }
 
+/// The imported surface at `uv`, back in the file's units (`unit` per file unit), equals the
+/// independent reading of the file's parameters `v` there to 1e-12 of the net's size.
+fn assert_matches_reference(
+    surface: &crate::nurbs::NurbsSurface,
+    v: &[f64],
+    unit: f64,
+    uv: Point2<f64>,
+    what: &str,
+) {
+    let size = surface
+        .points()
+        .iter()
+        .map(|p| p.norm())
+        .fold(1.0, f64::max);
+    let ours = surface.point(uv).unwrap() / unit;
+    let theirs = reference_point(v, uv);
+    assert!(
+        (ours - theirs).norm() <= 1e-12 * size,
+        "{what}: {ours} vs {theirs}"
+    );
+}
+
 /// The point of a 128 entity from its reference parameters (u fastest, as IGES lists them).
 fn reference_point(v: &[f64], uv: Point2<f64>) -> Vector3<f64> {
     let (k1, k2, m1, m2) = (v[1] as usize, v[2] as usize, v[3] as usize, v[4] as usize);
@@ -109,20 +131,14 @@ fn every_sample_file_loads_and_its_surfaces_match_a_reference_reading() {
             }
             let v = reference_params(&text, s.entry);
             let (lo, hi) = s.surface.domain_bounds();
-            let size = s
-                .surface
-                .points()
-                .iter()
-                .map(|p| p.norm())
-                .fold(1.0, f64::max);
             for _ in 0..10 {
                 let uv = Point2::new(uniform(&mut r, lo.x, hi.x), uniform(&mut r, lo.y, hi.y));
-                let ours = s.surface.point(uv).unwrap() / model.unit.1;
-                let theirs = reference_point(&v, uv);
-                assert!(
-                    (ours - theirs).norm() <= 1e-12 * size,
-                    "{name} D{}: {ours} vs {theirs}",
-                    s.entry
+                assert_matches_reference(
+                    &s.surface,
+                    &v,
+                    model.unit.1,
+                    uv,
+                    &format!("{name} D{}", s.entry),
                 );
                 compared += 1;
             }
@@ -378,20 +394,14 @@ fn sample_surfaces_are_imported_on_their_declared_parameter_ranges() {
             if entry_line[48..56].trim().parse::<i64>().unwrap_or(0) != 0 {
                 continue;
             }
-            let size = s
-                .surface
-                .points()
-                .iter()
-                .map(|p| p.norm())
-                .fold(1.0, f64::max);
             for _ in 0..5 {
                 let uv = Point2::new(uniform(&mut r, lo.x, hi.x), uniform(&mut r, lo.y, hi.y));
-                let ours = s.surface.point(uv).unwrap() / model.unit.1;
-                let theirs = reference_point(&v, uv);
-                assert!(
-                    (ours - theirs).norm() <= 1e-12 * size,
-                    "{name} D{}",
-                    s.entry
+                assert_matches_reference(
+                    &s.surface,
+                    &v,
+                    model.unit.1,
+                    uv,
+                    &format!("{name} D{}", s.entry),
                 );
             }
         }
