@@ -26,7 +26,7 @@ mod table;
 
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 // mimalloc keeps freed memory for reuse; with glibc's allocator every large fresh buffer
 // (a subdivided surface, a million evaluated points) is page-faulted in again, which made
@@ -154,8 +154,30 @@ enum Command {
     View(commands::view::ViewArgs),
 }
 
+/// The command line, with every option that takes one value accepting negative numbers
+/// (`--smooth -1`): clap's default reads them as unknown options and advises `-- -1`, which
+/// does not work for an option. (Options whose values may start with a hyphen otherwise,
+/// points such as `--at -2,3` or formulas, say so themselves with `allow_hyphen_values`.)
+fn command() -> clap::Command {
+    fn negative_numbers(command: clap::Command) -> clap::Command {
+        command
+            .mut_args(|a| {
+                if !a.is_positional() && a.get_action().takes_values() {
+                    a.allow_negative_numbers(true)
+                } else {
+                    a
+                }
+            })
+            .mut_subcommands(negative_numbers)
+    }
+    negative_numbers(Cli::command())
+}
+
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let cli = match command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m))
+    {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };

@@ -29,6 +29,8 @@ impl Table {
         let mut rdr = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
+            // Rows of another length are reported below, by row and count.
+            .flexible(true)
             .from_reader(open_bounded(path)?);
         let headers: Vec<String> = rdr
             .headers()
@@ -96,6 +98,14 @@ impl Table {
 /// Refuses repeated column names (case-insensitive) and a one-column header that holds tabs
 /// or semicolons (a file separated by something other than commas).
 fn check_headers(path: &Path, headers: &[String]) -> Result<()> {
+    if let Some(first) = headers.first()
+        && first.trim_start_matches('\u{feff}').starts_with(['{', '['])
+    {
+        bail!(
+            "{}: a JSON file, where a CSV table is expected (a header line naming the columns, then one row per point)",
+            path.display()
+        );
+    }
     if let [only] = headers
         && (only.contains('\t') || only.contains(';'))
     {

@@ -632,3 +632,74 @@ fn a_centroid_split_that_misses_an_edge_is_named_by_rows() {
     assert!(e.contains("--split incenter"), "{e}");
     assert!(!out.exists());
 }
+
+#[test]
+fn negative_option_values_are_read_as_values() {
+    // clap read `-1` as an unknown option ("unexpected argument '-1' found") and advised
+    // `-- -1`, which does not work for an option.
+    let d = tempfile::tempdir().unwrap();
+    let data = d.path().join("d.csv");
+    std::fs::write(&data, "x,y,z\n0,0,0\n1,0,1\n0,1,2\n1,1,3\n0.5,0.4,1\n").unwrap();
+    let out = d.path().join("o.json");
+    let e = one_error(&pssurf(&[
+        "fit",
+        &s(&data),
+        "--approximate",
+        "4",
+        "--smooth",
+        "-1",
+        "-o",
+        &s(&out),
+    ]));
+    assert!(!e.contains("unexpected argument"), "{e}");
+    assert!(e.contains("-1"), "{e}");
+    // A negative number where one is allowed is simply used.
+    let u = small_ups(d.path());
+    let probe = pssurf(&["probe", &u, "--at", "-0.5,0.25"]);
+    assert!(
+        !String::from_utf8_lossy(&probe.stderr).contains("unexpected argument"),
+        "{}",
+        String::from_utf8_lossy(&probe.stderr)
+    );
+}
+
+#[test]
+fn a_ragged_csv_row_is_named_with_its_length() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("r.csv");
+    std::fs::write(&p, "x,y,z\n1,2,3\n4,5\n").unwrap();
+    let e = one_error(&pssurf(&["fit", &s(&p), "-o", "o.json"]));
+    // It was the csv crate's "CSV error: record 2 (line: 3, byte: 12): found record with 2
+    // fields, but the previous record has 3 fields".
+    assert!(e.contains("row 2 has 2 fields, the header has 3"), "{e}");
+}
+
+#[test]
+fn a_json_file_where_csv_is_expected_is_named_as_such() {
+    // `curve u.json` said "the column name `0.0]` appears twice".
+    let d = tempfile::tempdir().unwrap();
+    let u = small_ups(d.path());
+    let out = d.path().join("c.csv");
+    let e = one_error(&pssurf(&[
+        "curve",
+        &u,
+        "--subdivide",
+        "cubic",
+        "-o",
+        &s(&out),
+    ]));
+    assert!(
+        e.contains("a JSON file, where a CSV table is expected"),
+        "{e}"
+    );
+}
+
+#[test]
+fn info_on_a_hole_filling_report_says_it_is_not_a_surface() {
+    // It said "line 2, column 2: invalid type: map, expected a string".
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("report.json");
+    std::fs::write(&p, "[\n  {\n    \"g0_max\": 3e-7\n  }\n]\n").unwrap();
+    let e = one_error(&pssurf(&["info", &s(&p)]));
+    assert!(e.contains("not a pssurf surface file"), "{e}");
+}

@@ -259,6 +259,15 @@ pub fn from_json_str(text: &str) -> Result<Surface, FormatError> {
 
 /// Checks the `format` and `version` fields common to surface and curve files.
 pub(crate) fn check_header(text: &str) -> Result<Header, FormatError> {
+    // A list (e.g. the quality report of `pssurf fill-hole`) has no `format` field; serde
+    // would read it as the header's fields in order and complain about their types.
+    if text
+        .trim_start_matches('\u{feff}')
+        .trim_start()
+        .starts_with('[')
+    {
+        return Err(FormatError::NotPssurf);
+    }
     let header: Header = serde_json::from_str(text).map_err(syntax)?;
     match header.format.as_deref() {
         Some(FORMAT_NAME) => {}

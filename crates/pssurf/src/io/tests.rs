@@ -83,6 +83,10 @@ fn bad_files_are_rejected_with_their_location() {
         err(r#"{"type": "FeatureCollection"}"#),
         FormatError::NotPssurf
     );
+    // A list, such as a hole-filling report (serde read it as the header's fields in order:
+    // "invalid type: map, expected a string").
+    assert_eq!(err(r#"[{"g0_max": 3e-7}]"#), FormatError::NotPssurf);
+    assert_eq!(err("\u{feff} \n[]"), FormatError::NotPssurf);
     // Another format is named, with what it is when it is pssurf's own.
     let e = err(r#"{"format": "pssurf-wavelet", "version": 1, "levels": 2}"#);
     assert_eq!(e, FormatError::Foreign("pssurf-wavelet".into()));
