@@ -209,6 +209,8 @@ def test_inputs_are_converted(rng):
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"split": "middle"}, "split"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"triangles": [[0, 1, 3]]}, "refers to point 3"),
         (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"triangles": [[0.0, 1, 2]]}, "integer"),
+        # Unsigned indices beyond int64 were named as negative points ("point -1").
+        (np.array([[0, 0], [1, 0], [0, 1.0]]), np.zeros(3), {"triangles": np.array([[0, 1, 2**64 - 1]], dtype=np.uint64)}, "refers to point 18446744073709551615"),
         (np.array([[0, 0], [1, 0], [0, 1e308]]), np.zeros(3), {}, "range"),
         (np.array([[0, 0], [1, 0], [0, np.inf]]), np.zeros(3), {}, "finite"),
         # Bad coordinates and repeated points named as the caller's points, on every path.

@@ -94,9 +94,39 @@ fn read_obj(path: &Path) -> Result<Mesh, String> {
     Ok(mesh)
 }
 
+/// Why an STL file ended before its triangles did (stl_io says "failed to fill whole
+/// buffer"): for a binary file, the triangles its header promises and the bytes they need.
+fn truncated_stl(path: &Path) -> String {
+    let bytes = std::fs::metadata(path).map_or(0, |m| m.len());
+    let promised = std::fs::File::open(path).ok().and_then(|mut f| {
+        use std::io::Read as _;
+        let mut header = [0u8; 84];
+        f.read_exact(&mut header).ok()?;
+        Some(u32::from_le_bytes(header[80..84].try_into().ok()?))
+    });
+    match promised {
+        Some(n) if !is_ascii_stl(path) => format!(
+            "the file ends early: its header promises {n} triangles, {} bytes, and it has {bytes}",
+            84 + 50 * u64::from(n)
+        ),
+        _ => "the file ends early, in the middle of a triangle".to_string(),
+    }
+}
+
+/// Whether the file starts like an ASCII STL ("solid").
+fn is_ascii_stl(path: &Path) -> bool {
+    use std::io::Read as _;
+    let mut start = [0u8; 5];
+    std::fs::File::open(path).is_ok_and(|mut f| f.read_exact(&mut start).is_ok())
+        && &start == b"solid"
+}
+
 fn read_stl(path: &Path) -> Result<Mesh, String> {
     let mut file = std::fs::File::open(path).map_err(|e| cause(&e))?;
-    let indexed = stl_io::read_stl(&mut file).map_err(|e| e.to_string())?;
+    let indexed = stl_io::read_stl(&mut file).map_err(|e| match e.kind() {
+        std::io::ErrorKind::UnexpectedEof => truncated_stl(path),
+        _ => e.to_string(),
+    })?;
     Ok(Mesh {
         positions: indexed
             .vertices
@@ -201,5 +231,22 @@ mod tests {
                 assert_eq!(m.positions[*v as usize], written(k));
             }
         }
+    }
+
+    /// A binary STL cut short is named as such, with the size its header promises (stl_io
+    /// said "failed to fill whole buffer").
+    #[test]
+    fn a_truncated_binary_stl_says_so() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.stl");
+        let mut bytes = vec![0u8; 80];
+        bytes.extend(2u32.to_le_bytes());
+        bytes.extend([0u8; 60]);
+        std::fs::write(&path, bytes).unwrap();
+        let e = read_mesh(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("ends early: its header promises 2 triangles, 184 bytes, and it has 144"),
+            "{e}"
+        );
     }
 }

@@ -65,6 +65,12 @@ def _triangles(triangles):
         raise ValueError(f"triangles must be integer indices, not {t.dtype}")
     if t.ndim != 2 or t.shape[1] != 3:
         raise ValueError(f"triangles must have shape (m, 3), not {t.shape}")
+    if t.dtype.kind == "u" and t.size and t.max() > np.iinfo(np.int64).max:
+        # Unsigned indices beyond int64 would wrap to negative numbers in the cast below.
+        row = int(np.argmax(t.max(axis=1) > np.iinfo(np.int64).max))
+        raise ValueError(
+            f"triangle {row} refers to point {int(t[row].max())}, beyond any number of points"
+        )
     return np.ascontiguousarray(t, dtype=np.int64)
 
 

@@ -56,6 +56,14 @@ pub enum MeshError {
         /// How many triangles share it.
         count: usize,
     },
+    /// Two triangles with the same three corners.
+    #[error("triangles {first} and {second} have the same three corners (a repeated triangle)")]
+    Repeated {
+        /// The first of them.
+        first: usize,
+        /// The second.
+        second: usize,
+    },
     /// Two triangles on an edge run it the same way.
     #[error("the triangles beside the edge between vertices {} and {} are oriented inconsistently (one is flipped)", edge.0, edge.1)]
     Orientation {
@@ -213,6 +221,18 @@ impl Mesh {
             if j - i == 2 {
                 let (h, g) = (keys[i].1, keys[i + 1].1);
                 if self.from_vertex(h) == self.from_vertex(g) {
+                    let corners = |h: u32| {
+                        let mut c = self.triangles[h as usize / 3];
+                        c.sort_unstable();
+                        c
+                    };
+                    if corners(h) == corners(g) {
+                        let (a, b) = (h as usize / 3, g as usize / 3);
+                        return Err(MeshError::Repeated {
+                            first: a.min(b),
+                            second: a.max(b),
+                        });
+                    }
                     return Err(MeshError::Orientation { edge: pair });
                 }
                 opposite[h as usize] = g;

@@ -287,6 +287,21 @@ fn bad_meshes_are_refused_with_clear_errors() {
     // One triangle flipped.
     let e = with(&|m| m.triangles[2].swap(0, 1));
     assert!(matches!(e, MeshError::Orientation { .. }), "{e}");
+    // A repeated triangle (it was reported as flipped), in any rotation of its corners.
+    let twice = Mesh {
+        positions: [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+            .iter()
+            .map(|c| Vector3::new(c[0], c[1], 0.0))
+            .collect(),
+        triangles: vec![[0, 1, 2], [1, 2, 0]],
+    };
+    assert_eq!(
+        twice.topology().err(),
+        Some(MeshError::Repeated {
+            first: 0,
+            second: 1
+        })
+    );
     // Two fans meeting at a vertex (a bow tie).
     let bow = Mesh {
         positions: [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]
