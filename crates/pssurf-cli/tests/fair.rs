@@ -66,3 +66,19 @@ fn fairing_a_noisy_ups_surface_lowers_its_energy_and_keeps_its_kind() {
         assert_eq!(msg.trim().lines().count(), 1, "{args:?}: {msg}");
     }
 }
+
+#[test]
+fn a_surface_of_zero_energy_reports_no_negative_energy() {
+    // A quadratic has no Hessian jumps: its energy was printed as about −1e-9 (rounding).
+    let d = tmp();
+    let surf = s(&d.path().join("q.json"));
+    ok(&[
+        "new", "ups", "--sides", "6", "--size", "4", "--height", "x*y", "-o", &surf,
+    ]);
+    let out = s(&d.path().join("f.json"));
+    let (before, after) = energies(&ok_report(&["fair", &surf, "-o", &out]));
+    assert!(
+        (0.0..1e-8).contains(&before) && (0.0..1e-8).contains(&after),
+        "{before} {after}"
+    );
+}

@@ -262,6 +262,24 @@ pub fn shortest_geodesic<S: ParametricSurface + ?Sized>(
             .jet(p)
             .map_err(|_| GeodesicError::Outside(p.x, p.y))?;
     }
+    if a == b {
+        // The shortest curve from a point to itself is the point (shooting has no direction
+        // to aim at; it reported "did not converge").
+        let point = surface
+            .point(a)
+            .map_err(|_| GeodesicError::Outside(a.x, a.y))?;
+        return Ok(ShortestGeodesic {
+            curve: SurfaceCurve {
+                points: vec![point],
+                uvs: vec![a],
+                closed: false,
+            },
+            length: 0.0,
+            exact: true,
+            lattice_length: 0.0,
+            relaxed_length: 0.0,
+        });
+    }
     let lattice = lattice_path(surface, a, b)?;
     let lattice_length = polyline_length(surface, &lattice);
     let relaxed = relax(surface, &resample(surface, &lattice, RELAX_POINTS));

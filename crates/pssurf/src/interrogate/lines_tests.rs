@@ -316,6 +316,9 @@ fn the_shortest_geodesic_on_a_sphere_has_the_great_circle_arc_length() {
         assert_near!(g.length, arc, 1e-8);
         assert!(g.lattice_length >= arc * (1.0 - 1e-12) && g.relaxed_length <= g.lattice_length);
         assert!((g.curve.uvs.last().unwrap() - b).norm() < 3e-9);
+        // From a point to itself: the point, of length 0 (it was "did not converge").
+        let same = shortest_geodesic(&s, a, a, &GeodesicOptions::default()).unwrap();
+        assert!(same.exact && same.length == 0.0 && same.curve.uvs == vec![a]);
     }
 }
 

@@ -53,9 +53,9 @@ impl Default for FairOptions {
 pub struct Faired {
     /// The faired surface (of the same kind: a UPS surface stays one).
     pub surface: Surface,
-    /// E before.
+    /// E before (≥ 0: a sum of squares, rounding below 0 reported as 0).
     pub energy_before: f64,
-    /// E after.
+    /// E after (≥ 0, likewise).
     pub energy_after: f64,
     /// The control points that moved.
     pub moved: usize,
@@ -208,7 +208,10 @@ pub fn fair(s: &Surface, opts: &FairOptions) -> Result<Faired, FairError> {
                     .collect();
                 q.quadratic_form(&x)
             })
-            .sum()
+            .sum::<f64>()
+            // E is a sum of squares; rounding makes it about −1e-10 on surfaces of zero
+            // energy (a quadratic under the jump energy), printed as a negative energy.
+            .max(0.0)
     };
     Ok(Faired {
         energy_before: energy_of(&original),
