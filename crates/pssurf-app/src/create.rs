@@ -151,7 +151,7 @@ impl NewSurface {
             .map_err(|e| e.to_string())?;
         let f = HeightFunction::parse(&self.height()).map_err(|e| e.to_string())?;
         let ups = graph_surface_from_formula(grid, self.kind, &f).map_err(|e| e.to_string())?;
-        Ok(Surface::from(ups))
+        Surface::try_from(ups).map_err(|e| e.to_string())
     }
 }
 

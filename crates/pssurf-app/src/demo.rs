@@ -32,7 +32,7 @@ pub fn wave_patch(size: i64) -> Surface {
             dy: -0.35 * 1.7 * s * (1.7 * p.y).sin() + 0.1 * p.x,
         }
     });
-    Surface::from(ups)
+    Surface::try_from(ups).expect("the demo's control values are small")
 }
 
 /// The paraboloid z = (x² + y²)/2 over a hexagon of radius 1 as a NURPS (all weights 1; PS
@@ -49,7 +49,7 @@ pub fn paraboloid(size: i64) -> Surface {
         dx: p.x,
         dy: p.y,
     });
-    Surface::from(ups)
+    Surface::try_from(ups).expect("the demo's control values are small")
 }
 
 /// The demo scene.

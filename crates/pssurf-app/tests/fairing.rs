@@ -14,9 +14,12 @@ fn the_fairing_panel_fairs_the_selected_surface_in_one_undo_step() {
     let mut app = App::demo();
     app.doc.selection.object = Some(0);
     let noisy = match app.doc.scene.objects[0].surface().unwrap().uniform() {
-        Some(u) => {
-            pssurf::surface::Surface::from(u.with_noise(0.01, pssurf::noise::NoiseKind::Uniform, 4))
-        }
+        Some(u) => pssurf::surface::Surface::try_from(u.with_noise(
+            0.01,
+            pssurf::noise::NoiseKind::Uniform,
+            4,
+        ))
+        .unwrap(),
         None => panic!("the demo's first object is a UPS surface"),
     };
     *app.doc.scene.objects[0].surface_mut().unwrap() = noisy;

@@ -39,7 +39,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 /// A PS-spline is a C¹ piecewise quadratic on any triangulation, written in Dierckx's
 /// normalized B-spline form: three control points per vertex forming a control triangle
 /// tangent to the surface. Surfaces (PS, NURPS, UPS and Bézier triangles) are stored in
-/// pssurf JSON files (docs/format.md).
+/// pssurf JSON files (docs/format.md). Wherever a command reads one surface, object K of a
+/// scene file (`pssurf import`, `new sphere`) is named SCENE.json#K, K from 0.
 #[derive(Parser, Debug)]
 #[command(
     name = "pssurf",

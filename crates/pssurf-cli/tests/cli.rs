@@ -267,6 +267,8 @@ fn help_teaches_the_commands() {
     for cmd in ["fit", "eval", "info"] {
         assert!(help.contains(cmd), "{help}");
     }
+    // How to name one surface of a scene.
+    assert!(help.contains("SCENE.json#K"), "{help}");
     let fit = ok(&["fit", "--help"]);
     assert!(
         fit.contains("zx,zy") && fit.contains("--triangles"),

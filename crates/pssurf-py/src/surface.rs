@@ -159,7 +159,7 @@ impl PySurface {
             vertices.saturating_mul(UPS_BYTES_PER_VERTEX),
         )?;
         let out = py.detach(|| u.subdivide_times(times as usize));
-        Ok(PySurface::new(Surface::from(out)))
+        Ok(PySurface::new(Surface::try_from(out).map_err(value_error)?))
     }
 
     /// The wavelet decomposition over `levels` levels (thesis 4.5).
@@ -200,7 +200,7 @@ impl PySurface {
         let (out, _) = py
             .detach(|| u.denoise(levels, |_, _| rule, mode))
             .map_err(value_error)?;
-        Ok(PySurface::new(Surface::from(out)))
+        Ok(PySurface::new(Surface::try_from(out).map_err(value_error)?))
     }
 
     fn __repr__(&self) -> String {
@@ -265,13 +265,17 @@ impl Wavelet {
     }
 
     /// The coarsest surface.
-    fn coarse(&self) -> PySurface {
-        PySurface::new(Surface::from(self.decomposition.coarse()))
+    fn coarse(&self) -> PyResult<PySurface> {
+        Ok(PySurface::new(
+            Surface::try_from(self.decomposition.coarse()).map_err(value_error)?,
+        ))
     }
 
     /// The surface rebuilt from the coarse one and every detail.
-    fn reconstruct(&self) -> PySurface {
-        PySurface::new(Surface::from(self.decomposition.reconstruct()))
+    fn reconstruct(&self) -> PyResult<PySurface> {
+        Ok(PySurface::new(
+            Surface::try_from(self.decomposition.reconstruct()).map_err(value_error)?,
+        ))
     }
 
     /// The detail coefficients of `level` (0 = coarsest) and coordinate `component`.
@@ -406,5 +410,7 @@ pub fn ups(
         let grid = UpsGrid::new(lattice, polygon).map_err(|e| e.to_string())?;
         graph_surface_from_formula(grid, kind, &f).map_err(|e| e.to_string())
     });
-    Ok(PySurface::new(Surface::from(surface.map_err(value_error)?)))
+    Ok(PySurface::new(
+        Surface::try_from(surface.map_err(value_error)?).map_err(value_error)?,
+    ))
 }

@@ -24,7 +24,7 @@ fn surface(n: i64) -> Surface {
         dx: Vector3::new(1.0, 0.0, 3.0 * (3.0 * p.x).cos() * (2.0 * p.y).cos()),
         dy: Vector3::new(0.0, 1.0, -2.0 * (3.0 * p.x).sin() * (2.0 * p.y).sin()),
     });
-    Surface::from(UpsSurface::Parametric(ups))
+    Surface::try_from(UpsSurface::Parametric(ups)).unwrap()
 }
 
 fn load(c: &mut Criterion) {

@@ -79,8 +79,10 @@ fn nearest_side(surface: &Arc<Surface>, uv: nalgebra::Point2<f64>) -> Option<usi
 }
 
 /// A filled patch as a surface.
-fn as_surface(patch: pssurf::ups::Ups<nalgebra::Vector3<f64>>) -> Surface {
-    Surface::Uniform(UniformSurface::new(UpsSurface::Parametric(patch)))
+fn as_surface(patch: pssurf::ups::Ups<nalgebra::Vector3<f64>>) -> Result<Surface, String> {
+    UniformSurface::new(UpsSurface::Parametric(patch))
+        .map(Surface::Uniform)
+        .map_err(|e| format!("the patch: {e}"))
 }
 
 impl HolesPanel {
@@ -172,7 +174,11 @@ impl HolesPanel {
                 Ok(r) => reports.push(r),
                 Err(e) => return cx.status(format!("cannot measure the patch: {e}")),
             }
-            let mut o = SceneObject::new(format!("hole patch {}", k + 1), as_surface(patch));
+            let surface = match as_surface(patch) {
+                Ok(s) => s,
+                Err(e) => return cx.status(format!("cannot fill: {e}")),
+            };
+            let mut o = SceneObject::new(format!("hole patch {}", k + 1), surface);
             o.group = "hole".into();
             objects.push(o);
         }
@@ -228,7 +234,10 @@ impl HolesPanel {
                 Ok(r) => s.reports.push(r),
                 Err(e) => return cx.status(format!("cannot measure the patch: {e}")),
             }
-            surfaces.push((object, Box::new(as_surface(patch))));
+            match as_surface(patch) {
+                Ok(surface) => surfaces.push((object, Box::new(surface))),
+                Err(e) => return cx.status(format!("no patch: {e}")),
+            }
         }
         let level = s.fills.first().map_or(0, |f| f.level());
         cx.emit(Command::ReplaceSurfaces {

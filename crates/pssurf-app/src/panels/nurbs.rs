@@ -55,7 +55,11 @@ impl Panel for NurbsPanel {
             match approximate(nurbs, &opts) {
                 Ok(a) => {
                     let mut object =
-                        SceneObject::new(format!("{} (UPS)", o.name), Surface::from(a.surface));
+                        SceneObject::new(
+                        format!("{} (UPS)", o.name),
+                        // `approximate` refuses results with unusable values.
+                        Surface::try_from(a.surface).expect("an approximation of usable values"),
+                    );
                     object.group = o.group.clone();
                     object.transform = o.transform;
                     cx.emit(Command::Add(vec![object]));

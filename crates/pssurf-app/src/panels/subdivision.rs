@@ -205,7 +205,9 @@ impl Panel for SubdivisionPanel {
             let s = u.subdivide_times(self.times);
             let vertices = s.grid().vertex_count();
             let status = format!("subdivided {} time(s): {vertices} vertices", self.times);
-            replace_selected(cx, "subdivide", Surface::from(s), status);
+            let s = Surface::try_from(s)
+                .expect("subdivision averages the control values of a usable surface");
+            replace_selected(cx, "subdivide", s, status);
         }
     }
 

@@ -104,13 +104,16 @@ impl Panel for WaveletPanel {
             } else {
                 Shrink::Hard
             };
-            match u.denoise(self.settings.levels, |_, _| rule, mode) {
+            let denoised = u
+                .denoise(self.settings.levels, |_, _| rule, mode)
+                .and_then(|(s, stats)| Ok((Surface::try_from(s)?, stats)));
+            match denoised {
                 Ok((s, stats)) => {
                     let zeroed: usize = stats.iter().map(|s| s.zeroed).sum();
                     let total: usize = stats.iter().map(|s| s.count).sum();
                     let status =
                         format!("thresholding set {zeroed} of {total} coefficients to zero");
-                    replace_selected(cx, "wavelet threshold", Surface::from(s), status);
+                    replace_selected(cx, "wavelet threshold", s, status);
                     self.last = stats;
                 }
                 Err(e) => cx.status(e.to_string()),

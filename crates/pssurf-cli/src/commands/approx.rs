@@ -68,7 +68,7 @@ pub fn run(args: &ApproxArgs) -> Result<()> {
             ..ApproxOptions::default()
         },
     )?;
-    let ups = Surface::from(a.surface.clone());
+    let ups = Surface::try_from(a.surface.clone())?;
     crate::output::save_surface(&ups, &args.output)?;
     for (n, max, rms) in &a.tried {
         eprintln!(

@@ -140,7 +140,7 @@ pub fn run(args: &DenoiseArgs) -> Result<()> {
         },
         100.0 * removed as f64 / total.max(1) as f64
     )?;
-    crate::output::save_surface(&Surface::from(out), &args.output)?;
+    crate::output::save_surface(&Surface::try_from(out)?, &args.output)?;
     eprintln!("wrote {}", args.output.display());
     Ok(())
 }

@@ -354,24 +354,28 @@ fn holes_from_edges(
 }
 
 /// The patch of a filled hole as a surface.
-fn patch_surface(f: &FilledHole) -> Surface {
-    Surface::Uniform(UniformSurface::new(UpsSurface::Parametric(f.patch.clone())))
+fn patch_surface(f: &FilledHole) -> Result<Surface> {
+    Ok(Surface::Uniform(UniformSurface::new(
+        UpsSurface::Parametric(f.patch.clone()),
+    )?))
 }
 
 /// Writes one patch as a surface file, several as a scene.
 fn write_patches(filled: &[FilledHole], output: &Path, name: &str) -> Result<()> {
     if let [one] = filled {
-        return crate::output::save_surface(&patch_surface(one), output);
+        return crate::output::save_surface(&patch_surface(one)?, output);
     }
     let objects: Vec<SceneEntry> = filled
         .iter()
         .enumerate()
-        .map(|(k, f)| SceneEntry {
-            name: format!("{name} {}", k + 1),
-            group: name.to_string(),
-            surface: patch_surface(f),
+        .map(|(k, f)| {
+            Ok(SceneEntry {
+                name: format!("{name} {}", k + 1),
+                group: name.to_string(),
+                surface: patch_surface(f)?,
+            })
         })
-        .collect();
+        .collect::<Result<_>>()?;
     write_scene(&objects, output)
 }
 
@@ -434,7 +438,7 @@ pub fn run_example(args: &ExampleArgs) -> Result<()> {
         };
         for (k, f) in filled.iter().enumerate() {
             let path = args.output.join(format!("{stem}-patch-{}.json", k + 1));
-            crate::output::save_surface(&patch_surface(f), &path)?;
+            crate::output::save_surface(&patch_surface(f)?, &path)?;
         }
         let mut objects: Vec<SceneEntry> = ex
             .surroundings
@@ -446,11 +450,13 @@ pub fn run_example(args: &ExampleArgs) -> Result<()> {
                 surface: s,
             })
             .collect();
-        objects.extend(filled.iter().enumerate().map(|(k, f)| SceneEntry {
-            name: format!("patch {}", k + 1),
-            group: "patches".into(),
-            surface: patch_surface(f),
-        }));
+        for (k, f) in filled.iter().enumerate() {
+            objects.push(SceneEntry {
+                name: format!("patch {}", k + 1),
+                group: "patches".into(),
+                surface: patch_surface(f)?,
+            });
+        }
         write_scene(&objects, &args.output.join(format!("{stem}.json")))?;
         write_report(&filled, &args.output.join(format!("{stem}-report.json")))?;
     }

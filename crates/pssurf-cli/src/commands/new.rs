@@ -225,7 +225,7 @@ fn new_ups(args: &NewUpsArgs) -> Result<()> {
     let ups = graph_surface_from_formula(grid, kind, &f)?;
     let g = ups.grid();
     let (vertices, triangles) = (g.vertex_count(), g.triangle_count());
-    crate::output::save_surface(&Surface::from(ups), &args.output)?;
+    crate::output::save_surface(&Surface::try_from(ups)?, &args.output)?;
     eprintln!(
         "created a {} UPS surface: {vertices} vertices, {triangles} triangles; wrote {}",
         match args.kind {

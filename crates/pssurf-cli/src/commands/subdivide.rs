@@ -40,7 +40,7 @@ pub fn run(args: &SubdivideArgs) -> Result<()> {
     .check()?;
     let out = u.subdivide_times(args.times as usize);
     let after = out.grid().vertex_count();
-    crate::output::save_surface(&Surface::from(out), &args.output)?;
+    crate::output::save_surface(&Surface::try_from(out)?, &args.output)?;
     eprintln!(
         "subdivided {} times: {before} → {after} vertices; wrote {}",
         args.times,

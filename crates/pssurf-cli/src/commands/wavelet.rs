@@ -72,7 +72,7 @@ fn report(dec: &UpsDecomposition, names: &[&str]) -> Result<serde_json::Value> {
             bars.join("|")
         )?;
     }
-    let coarse_text = pssurf::io::to_json_string(&Surface::from(dec.coarse()));
+    let coarse_text = pssurf::io::to_json_string(&Surface::try_from(dec.coarse())?);
     let coarse: serde_json::Value = serde_json::from_str(&coarse_text).expect("our own JSON");
     let details: Vec<serde_json::Value> = (0..dec.levels())
         .map(|k| {

@@ -23,5 +23,5 @@ pub fn noisy_wave(size: i64) -> Surface {
             dy: -0.6 * s * (2.0 * p.y).sin(),
         }
     });
-    Surface::from(ups.with_noise(0.001, NoiseKind::Uniform, 5))
+    Surface::try_from(ups.with_noise(0.001, NoiseKind::Uniform, 5)).unwrap()
 }

@@ -273,7 +273,10 @@ pub(crate) fn fair_interior(patch: &Ups<Vector3<f64>>) -> Result<Ups<Vector3<f64
     if grid.real_slots().iter().all(|&s| grid.is_boundary(s)) {
         return Ok(patch.clone());
     }
-    let s = Surface::Uniform(UniformSurface::new(UpsSurface::Parametric(patch.clone())));
+    let s = Surface::Uniform(
+        UniformSurface::new(UpsSurface::Parametric(patch.clone()))
+            .map_err(|e| HoleError::Fair(e.to_string()))?,
+    );
     let faired = fair(
         &s,
         &FairOptions {

@@ -195,7 +195,8 @@ fn constrained_fairing_lowers_the_energy_and_solves_its_normal_equations() {
             continue; // the prism cap is exact at level 0: no interior vertex
         }
         let instant = fill.patch(Interior::Instant).unwrap();
-        let surface = Surface::Uniform(UniformSurface::new(UpsSurface::Parametric(instant)));
+        let surface =
+            Surface::Uniform(UniformSurface::new(UpsSurface::Parametric(instant)).unwrap());
         let f = fair(
             &surface,
             &FairOptions {

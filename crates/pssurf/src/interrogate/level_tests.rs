@@ -367,7 +367,7 @@ fn ups_sin_cos() -> Surface {
     };
     let grid = UpsGrid::new(lattice, LatticePolygon::standard(6, 4).unwrap()).unwrap();
     let f = crate::expr::HeightFunction::parse("sin(x)*cos(y)").unwrap();
-    Surface::from(graph_surface_from_formula(grid, GraphKind::Parametric, &f).unwrap())
+    Surface::try_from(graph_surface_from_formula(grid, GraphKind::Parametric, &f).unwrap()).unwrap()
 }
 
 #[cfg(feature = "expr")]

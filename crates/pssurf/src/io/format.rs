@@ -364,20 +364,24 @@ impl Structure {
                 Surface::Nurps(Nurps::new(b, c, w).map_err(ps_error)?)
             }
             (Structure::Uniform(g), PsControl::Heights(c)) => {
-                UpsSurface::Functional(Ups::from_vertices(g, c).map_err(|e| invalid("control", e))?)
-                    .into()
+                Surface::try_from(UpsSurface::Functional(
+                    Ups::from_vertices(g, c).map_err(|e| invalid("control", e))?,
+                ))
+                .map_err(|e| invalid("control", e))?
             }
-            (Structure::Uniform(g), PsControl::Points(c)) => UpsSurface::Parametric(
-                Ups::from_vertices(g, c).map_err(|e| invalid("control_points", e))?,
-            )
-            .into(),
-            (Structure::Uniform(g), PsControl::Weighted(c, w)) => {
+            (Structure::Uniform(g), PsControl::Points(c)) => {
+                Surface::try_from(UpsSurface::Parametric(
+                    Ups::from_vertices(g, c).map_err(|e| invalid("control_points", e))?,
+                ))
+                .map_err(|e| invalid("control_points", e))?
+            }
+            (Structure::Uniform(g), PsControl::Weighted(c, w)) => Surface::try_from(
                 UpsSurface::Rational(Ups::rational(g, c, w).map_err(|e| match e {
                     crate::ups::UpsError::Ps(pe) => ps_error(pe),
                     e => invalid("weights", e),
-                })?)
-                .into()
-            }
+                })?),
+            )
+            .map_err(|e| invalid("control_points", e))?,
         })
     }
 }

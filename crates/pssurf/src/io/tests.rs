@@ -284,13 +284,14 @@ mod fuzz_every_kind {
             LatticePolygon::standard(6, 2).unwrap(),
         )
         .unwrap();
-        let u = Surface::from(UpsSurface::Functional(Ups::hermite(g, |q| {
+        let u = Surface::try_from(UpsSurface::Functional(Ups::hermite(g, |q| {
             crate::ps::Hermite {
                 value: q.x * q.y,
                 dx: q.y,
                 dy: q.x,
             }
-        })));
+        })))
+        .unwrap();
         let bezier = r#"{"format":"pssurf","version":1,"kind":"bezier","bezier":{"triangle":[[0,0],[1,0],[0,1]],"degree":2,"points":[[0,0,0],[0.5,0,0],[0,0.5,0],[1,0,0],[0.5,0.5,0.5],[0,1,0]]}}"#;
         let rational = r#"{"format":"pssurf","version":1,"kind":"rational_bezier","bezier":{"triangle":[[0,0],[1,0],[0,1]],"degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]],"weights":[1,2,3]}}"#;
         vec![
@@ -422,9 +423,9 @@ mod uniform {
         let w = vec![[1.0, 2.0, 0.5]; pts.len()];
         let r = Ups::rational(g, pts, w).unwrap();
         vec![
-            UpsSurface::Functional(f).into(),
-            UpsSurface::Parametric(p).into(),
-            UpsSurface::Rational(r).into(),
+            Surface::try_from(UpsSurface::Functional(f)).unwrap(),
+            Surface::try_from(UpsSurface::Parametric(p)).unwrap(),
+            Surface::try_from(UpsSurface::Rational(r)).unwrap(),
         ]
     }
 
@@ -713,7 +714,7 @@ fn binary_samples() -> Vec<Surface> {
             dx: 1.7 * (p.x * 1.7).cos() * p.y,
             dy: (p.x * 1.7).sin(),
         });
-        out.push(Surface::from(ups));
+        out.push(Surface::try_from(ups).unwrap());
     }
     out.push(nurbs_surface());
     out

@@ -186,7 +186,10 @@ const MAX_SAMPLES: usize = 4_000_000;
 /// edge on every piece (fewer on large surfaces, at most 4 million (`MAX_SAMPLES`) in all), in parallel
 /// and without storing the samples.
 pub fn deviation(s: &NurbsSurface, ups: &UpsSurface, n: [usize; 2], level: u32) -> (f64, f64) {
-    let surface = Surface::from(ups.clone());
+    let Ok(surface) = Surface::try_from(ups.clone()) else {
+        // Values beyond the supported range (which `approximate` refuses): no deviation.
+        return (f64::INFINITY, f64::INFINITY);
+    };
     let pieces = surface.piece_count();
     let mut m = 1usize << level.min(8);
     while m > 1 && pieces * (m + 1) * (m + 2) / 2 > MAX_SAMPLES {

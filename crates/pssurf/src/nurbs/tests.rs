@@ -399,7 +399,7 @@ fn the_ups_approximation_interpolates_values_and_derivatives_at_every_vertex() {
     let lattice = *grid.lattice();
     let (lo, hi) = s.domain_bounds();
     let (w, h) = (hi.x - lo.x, hi.y - lo.y);
-    let surface = Surface::from(ups.clone());
+    let surface = Surface::try_from(ups.clone()).unwrap();
     let mut vertices = 0;
     for slot in grid.real_slots() {
         let [i, j] = grid.lattice_point(slot);

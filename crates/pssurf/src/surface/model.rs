@@ -243,14 +243,17 @@ impl Surface {
             return Err(EditError::InvalidAmplitude(amplitude));
         }
         if let Surface::Uniform(u) = self {
-            let out = Surface::from(u.ups().with_noise(amplitude, kind, seed));
-            return match out
-                .control_points()
-                .iter()
-                .position(|p| !p.position.iter().all(|&x| crate::limits::value_ok(x)))
-            {
+            let noisy = u.ups().with_noise(amplitude, kind, seed);
+            let unusable = noisy
+                .grid()
+                .real_slots()
+                .into_iter()
+                .flat_map(|s| noisy.vertex_points(s))
+                .position(|p| !p.position.iter().all(|&x| crate::limits::value_ok(x)));
+            return match unusable {
                 Some(id) => Err(EditError::NonFinite(id)),
-                None => Ok(out),
+                // Noise moves points only: the weights were usable and still are.
+                None => Surface::try_from(noisy).map_err(|_| EditError::NonFinite(0)),
             };
         }
         let mut out = self.clone();
@@ -286,9 +289,12 @@ impl Surface {
     }
 }
 
-impl From<UpsSurface> for Surface {
-    fn from(s: UpsSurface) -> Self {
-        Surface::Uniform(UniformSurface::new(s))
+impl TryFrom<UpsSurface> for Surface {
+    type Error = crate::ups::UpsError;
+    /// The surface of a uniform form, unless a control value is unusable
+    /// ([`UniformSurface::new`]).
+    fn try_from(s: UpsSurface) -> Result<Self, Self::Error> {
+        UniformSurface::new(s).map(Surface::Uniform)
     }
 }
 

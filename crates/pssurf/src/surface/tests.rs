@@ -113,7 +113,7 @@ fn every_kind(q: Quadric, r: &mut rand_chacha::ChaCha8Rng) -> Vec<Surface> {
         GraphKind::Parametric,
         GraphKind::Rational,
     ] {
-        kinds.push(graph_surface(grid.clone(), kind, |p| q.hermite(p)).into());
+        kinds.push(Surface::try_from(graph_surface(grid.clone(), kind, |p| q.hermite(p))).unwrap());
     }
     kinds.push(Surface::from(RationalBezierTriangle::from_polynomial(
         &bezier,
@@ -777,4 +777,31 @@ fn clipped_segments_are_inside_and_their_gaps_outside_on_random_meshes() {
         checked >= total * 95 / 100,
         "only {checked} of {total} compared"
     );
+}
+
+/// A uniform form whose control values are beyond ±1e60 (reachable through the library's
+/// `Ups::hermite`) is refused when it becomes a surface, naming the vertex; its general
+/// form could not hold those values, and building it on first use panicked.
+#[test]
+fn a_uniform_form_with_unusable_values_is_refused_not_a_panic() {
+    let grid = UpsGrid::new(
+        Lattice {
+            base: 1.0,
+            origin: Point2::origin(),
+        },
+        LatticePolygon::standard(6, 2).unwrap(),
+    )
+    .unwrap();
+    for height in [1e61, f64::INFINITY, f64::NAN] {
+        let ups = crate::ups::Ups::hermite(grid.clone(), |p| Hermite {
+            value: if p.x > 2.5 { height } else { 0.0 },
+            dx: 0.0,
+            dy: 0.0,
+        });
+        let e = Surface::try_from(UpsSurface::Functional(ups)).unwrap_err();
+        assert!(
+            matches!(e, crate::ups::UpsError::UnusableValues { at } if at[0] > 2.5),
+            "{height}: {e}"
+        );
+    }
 }

@@ -179,7 +179,7 @@ impl UpsSurface {
     }
 
     /// The control triangle of the vertex in `slot`, as control points.
-    fn vertex_points(&self, slot: usize) -> [ControlPoint; 3] {
+    pub(crate) fn vertex_points(&self, slot: usize) -> [ControlPoint; 3] {
         match self {
             UpsSurface::Functional(s) => {
                 let lattice = s.grid().lattice();
@@ -329,13 +329,18 @@ impl Clone for UniformSurface {
 }
 
 impl UniformSurface {
-    /// The surface of a uniform form (its general form is built when first needed).
-    pub fn new(ups: UpsSurface) -> Self {
-        UniformSurface {
+    /// The surface of a uniform form (its general form is built when first needed); fails
+    /// when a control value is not usable
+    /// ([`UpsSurface::first_unusable_vertex`]), since the general form could not hold it.
+    pub fn new(ups: UpsSurface) -> Result<Self, UpsError> {
+        if let Some(p) = ups.first_unusable_vertex() {
+            return Err(UpsError::UnusableValues { at: [p.x, p.y] });
+        }
+        Ok(UniformSurface {
             slots: ups.grid().real_slots(),
             ups,
             general: OnceLock::new(),
-        }
+        })
     }
 
     /// The uniform form.
@@ -349,7 +354,7 @@ impl UniformSurface {
             Box::new(
                 self.ups
                     .to_general()
-                    .expect("a validated uniform triangulation always has a PS basis with t(6)"),
+                    .expect("a validated uniform triangulation always has a PS basis with t(6), and `new` checked the values"),
             )
         })
     }

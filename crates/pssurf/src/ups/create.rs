@@ -124,11 +124,12 @@ mod tests {
                 let q = move |x: f64, y: f64| {
                     a[0] * x * x + a[1] * x * y + a[2] * y * y + a[3] * x + a[4] * y + a[5]
                 };
-                let s = Surface::from(graph_surface(grid(sides, &mut r), kind, |p| Hermite {
+                let s = Surface::try_from(graph_surface(grid(sides, &mut r), kind, |p| Hermite {
                     value: q(p.x, p.y),
                     dx: 2.0 * a[0] * p.x + a[1] * p.y + a[3],
                     dy: a[1] * p.x + 2.0 * a[2] * p.y + a[4],
-                }));
+                }))
+                .unwrap();
                 let e = error(&s, q, &mut r);
                 assert!(e < 1e-12, "{kind:?}, {sides} sides: {e}");
             }
@@ -144,7 +145,8 @@ mod tests {
             let f = HeightFunction::parse("0.7*x^2 - 1.2*x*y + 0.3*y^2 + x - 2").unwrap();
             let q = |x: f64, y: f64| 0.7 * x * x - 1.2 * x * y + 0.3 * y * y + x - 2.0;
             for kind in KINDS {
-                let s = Surface::from(graph_surface_from_formula(g.clone(), kind, &f).unwrap());
+                let s = Surface::try_from(graph_surface_from_formula(g.clone(), kind, &f).unwrap())
+                    .unwrap();
                 assert!(error(&s, q, &mut r) < 1e-12, "{kind:?} {sides}");
             }
             let bad = HeightFunction::parse("ln(x - 100)").unwrap();

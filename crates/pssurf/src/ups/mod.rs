@@ -79,6 +79,12 @@ pub enum UpsError {
         /// The origin.
         origin: [f64; 2],
     },
+    /// A control value (or weight) is not finite or lies beyond the supported range.
+    #[error("the control values at ({}, {}) are not finite or lie beyond ±1e60 (or a weight outside 1e-60 … 1e60)", crate::text::Short(at[0]), crate::text::Short(at[1]))]
+    UnusableValues {
+        /// The vertex, in the domain.
+        at: [f64; 2],
+    },
     /// A control array has the wrong length.
     #[error("expected {expected} control triples, found {found}")]
     WrongBlockCount {

@@ -1063,7 +1063,7 @@ fn lattice_ps_points_and_counts_match_the_general_form() {
                 assert!((a - b).norm() < 1e-13, "{name}: slot {s}: {a} vs {b}");
             }
         }
-        let surface = Surface::from(UpsSurface::Parametric(ups));
+        let surface = Surface::try_from(UpsSurface::Parametric(ups)).unwrap();
         let general = Surface::Parametric(general);
         assert_eq!(surface.piece_count(), general.piece_count(), "{name}");
         assert_eq!(surface.domain_bounds(), general.domain_bounds(), "{name}");

@@ -61,7 +61,9 @@ pub struct Variant {
 pub fn variants() -> Vec<Variant> {
     let original = smooth().subdivide_times(LEVELS as usize);
     let noisy = original.with_noise(NOISE, NoiseKind::Uniform, 2003);
-    let wrap = |u: Ups<Vector3<f64>>| Surface::from(UpsSurface::Parametric(u));
+    let wrap = |u: Ups<Vector3<f64>>| {
+        Surface::try_from(UpsSurface::Parametric(u)).expect("the showcase's values are small")
+    };
     let mut out = vec![
         Variant {
             key: "original",

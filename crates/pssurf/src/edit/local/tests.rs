@@ -41,7 +41,7 @@ fn surfaces(seed: u64) -> Vec<(&'static str, Surface)> {
         ("functional", Surface::Functional(functional)),
         ("parametric", Surface::Parametric(parametric)),
         ("nurps", Surface::Nurps(nurps)),
-        ("ups", Surface::from(ups)),
+        ("ups", Surface::try_from(ups).unwrap()),
     ]
 }
 
