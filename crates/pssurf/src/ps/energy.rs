@@ -278,6 +278,7 @@ struct PsSide {
 impl PsSide {
     fn new(basis: &PsBasis, t: usize, thin: ThinPieces) -> Self {
         let pieces = basis.refinement().sub_triangles(basis.triangulation(), t);
+        let size = basis.triangulation().triangle_geometry(t).diameter();
         PsSide {
             vertices: basis.triangulation().triangle(t),
             stencil: basis.stencil(t),
@@ -285,7 +286,7 @@ impl PsSide {
             thin,
             shape: std::array::from_fn(|k| match thin {
                 ThinPieces::Kept => 1.0,
-                ThinPieces::Faded => shape_weight(&pieces[k]),
+                ThinPieces::Faded => shape_weight(&pieces[k], size),
             }),
             gradients: std::array::from_fn(|k| {
                 pieces[k]
@@ -333,16 +334,20 @@ enum ThinPieces {
     Faded,
 }
 
-/// The weight of the jumps at a piece: 1, unless the piece is thin, its smallest height
-/// less than [`THIN`] × its longest side; then (ratio / THIN)⁴: the squared jumps the fixed
-/// values force there grow like ratio⁻⁴, and the weight keeps them of the size of the
-/// others'.
-fn shape_weight(t: &crate::geometry::Triangle2) -> f64 {
-    let ratio = t.min_height() / t.diameter();
+/// The weight of the jumps at a piece of a triangle of diameter `size`: 1, unless the
+/// piece's smallest height is less than [`THIN`] × the triangle's diameter (a needle, a
+/// sliver, or a small piece where a split point lies near a corner); then (ratio / THIN)⁴:
+/// the squared jumps there, and their rounding errors, grow like ratio⁻⁴, and the weight
+/// keeps them of the size of the others'. Measuring the height against the piece's own
+/// longest side missed small pieces of good shape: next to boundary slivers a split point
+/// 1e-8 from a corner made pieces 1e-8 across whose jumps weighed 1e11 times the others,
+/// and their rounding alone moved the gradients of quadratics by 2e-7.
+fn shape_weight(t: &crate::geometry::Triangle2, size: f64) -> f64 {
+    let ratio = t.min_height() / t.diameter().max(size);
     (ratio / THIN).min(1.0).powi(4)
 }
 
-/// Smallest height over longest side below which a piece's jumps fade
+/// A piece's smallest height over its triangle's diameter below which its jumps fade
 /// ([`ThinPieces::Faded`]).
 const THIN: f64 = 0.05;
 
@@ -471,13 +476,22 @@ mod tests {
             let mut thin = 0.0;
             let mut jumps = 0.0;
             // The interpolation energy: each jump also weighted by the smaller of
-            // min(1, 20 h / L)⁴ of its two pieces (h the smallest height, L the longest side).
+            // min(1, 20 h / D)⁴ of its two pieces (h the piece's smallest height, D the
+            // diameter of its triangle).
             let mut faded = 0.0;
-            let fade = |p: &crate::geometry::Triangle2| {
+            let fade = |p: &crate::geometry::Triangle2, tr: usize| {
                 let sides = [p.v[1] - p.v[0], p.v[2] - p.v[1], p.v[0] - p.v[2]];
                 let longest = sides.iter().map(|d| d.norm()).fold(0.0, f64::max);
                 let height = 2.0 * p.area().abs() / longest;
-                (20.0 * height / longest).min(1.0).powi(4)
+                let t = b
+                    .triangulation()
+                    .triangle(tr)
+                    .map(|v| b.triangulation().vertex(v));
+                let diameter = [(0, 1), (1, 2), (2, 0)]
+                    .iter()
+                    .map(|&(i, j)| (t[i] - t[j]).norm())
+                    .fold(0.0, f64::max);
+                (20.0 * height / diameter).min(1.0).powi(4)
             };
             let mut faded_pieces = 0;
             let hess = |tr: usize, k: usize| {
@@ -496,8 +510,8 @@ mod tests {
                     let len2 = (pieces[k].v[1] - pieces[k].v[2]).norm_squared();
                     let w = (4.0 * (pieces[k].area() + pieces[next].area()) / len2).min(1.0);
                     jumps += w * sq_frob(h, hn);
-                    faded += fade(&pieces[k]).min(fade(&pieces[next])) * w * sq_frob(h, hn);
-                    faded_pieces += usize::from(fade(&pieces[k]) < 1.0);
+                    faded += fade(&pieces[k], tr).min(fade(&pieces[next], tr)) * w * sq_frob(h, hn);
+                    faded_pieces += usize::from(fade(&pieces[k], tr) < 1.0);
                 }
                 for c in 0..3 {
                     let Some(n) = tri.neighbor(tr, crate::ps::refinement::edge_to_local(c)) else {
@@ -524,7 +538,7 @@ mod tests {
                         .min(1.0);
                         let square = sq_frob(hess(tr, mine), hess(n, theirs));
                         jumps += w * square;
-                        faded += fade(&pieces[mine]).min(fade(&np[theirs])) * w * square;
+                        faded += fade(&pieces[mine], tr).min(fade(&np[theirs], n)) * w * square;
                     }
                 }
             }
