@@ -78,48 +78,65 @@ fn smoothing_beats_the_noise_and_the_interpolant_and_gcv_picks_a_good_lambda() {
 
 #[test]
 fn with_lambda_to_zero_on_every_point_the_fit_is_the_interpolant() {
-    // Well-shaped triangles: on sets with sliver triangles along the boundary the
-    // minimum-energy gradients there are weakly determined, and the global estimator's anchor
-    // (ANCHOR = 1e-3) moves the interpolant by up to 1e-1 (measured on 300 random points).
-    let pts = grid_points(18, 3);
-    let z: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
-    let interp = interpolate(&pts, &z, GradientMethod::Global)
-        .unwrap()
-        .spline;
-    let mut previous = (f64::INFINITY, f64::INFINITY);
-    for lambda in [1e-8, 1e-10, 1e-12, 1e-14, 1e-16] {
-        let fit = smooth_scattered(
-            &pts,
-            &z,
-            pts.len(),
-            Energy::HessianJumps,
-            Smoothing::Fixed(lambda),
-            &mut |_| {},
-        )
-        .unwrap();
-        let mut worst: f64 = 0.0;
-        for i in 0..=50 {
-            for j in 0..=50 {
-                let p = Point2::new(i as f64 / 50.0, j as f64 / 50.0);
-                worst = worst.max((fit.spline.eval(p).unwrap() - interp.eval(p).unwrap()).abs());
+    // The limit λ → 0 with M = N is the least-energy interpolant of the data on their own
+    // triangulation, which the global estimator computes (up to its anchor of 1e-7 to the
+    // local gradients). Random points (with slivers along the boundary) and a jittered grid.
+    // With the anchor at 1e-3 the two differed by 2.8e-3 on 200 random points (the audit's
+    // finding); before pieces were faded against their triangle, the boundary slivers of
+    // random sets kept them 1e-1 apart.
+    let sets = [
+        ("random 300", common::random_points_with_boundary(300, 5)),
+        ("grid 18", grid_points(18, 3)),
+    ];
+    for (name, pts) in sets {
+        let z: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
+        let interp = interpolate(&pts, &z, GradientMethod::Global)
+            .unwrap()
+            .spline;
+        let mut previous = (f64::INFINITY, f64::INFINITY);
+        for lambda in [1e-8, 1e-10, 1e-12, 1e-14] {
+            let fit = smooth_scattered(
+                &pts,
+                &z,
+                pts.len(),
+                Energy::HessianJumps,
+                Smoothing::Fixed(lambda),
+                &mut |_| {},
+            )
+            .unwrap();
+            let mut worst: f64 = 0.0;
+            for i in 0..=50 {
+                for j in 0..=50 {
+                    let p = Point2::new(i as f64 / 50.0, j as f64 / 50.0);
+                    if let (Ok(a), Ok(b)) = (fit.spline.eval(p), interp.eval(p)) {
+                        worst = worst.max((a - b).abs());
+                    }
+                }
             }
+            eprintln!(
+                "{name}, λ = {lambda:e}, M = N: rms residual {:.2e}, largest difference to the interpolant {worst:.2e}",
+                fit.rms_residual
+            );
+            // The residual and the difference to the interpolant shrink linearly with λ
+            // (below 1e-14, the rounding of the normal equations takes over).
+            assert!(
+                fit.rms_residual < 0.2 * previous.0,
+                "{name}: {} after {}",
+                fit.rms_residual,
+                previous.0
+            );
+            assert!(
+                worst < 0.2 * previous.1,
+                "{name}: {worst} after {}",
+                previous.1
+            );
+            previous = (fit.rms_residual, worst);
         }
-        eprintln!(
-            "λ = {lambda:e}, M = N: rms residual {:.2e}, largest difference to the interpolant {worst:.2e}",
-            fit.rms_residual
-        );
-        // The residual shrinks linearly with λ; the difference to the interpolant shrinks to
-        // the effect of the global estimator's small anchor to the local gradients.
         assert!(
-            fit.rms_residual < 0.05 * previous.0,
-            "{} after {}",
-            fit.rms_residual,
-            previous.0
+            previous.0 < 1e-8 && previous.1 < 1e-7,
+            "{name}: {previous:?}"
         );
-        assert!(worst <= previous.1 * 1.01, "{worst} after {}", previous.1);
-        previous = (fit.rms_residual, worst);
     }
-    assert!(previous.0 < 1e-10 && previous.1 < 1e-5, "{previous:?}");
 }
 
 #[test]
