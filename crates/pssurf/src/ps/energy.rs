@@ -95,7 +95,8 @@ impl PsBasis {
     }
 
     /// The Hessian-jump energy for fitting data (gradients of an interpolant, smoothing
-    /// fits): jumps at needle-shaped and sliver pieces fade out (`ThinPieces::Faded`).
+    /// fits): jumps at needle-shaped, sliver and small pieces (thin against their triangle)
+    /// fade out (`ThinPieces::Faded`).
     /// There values fixed by the data force second derivatives of the order of the data's
     /// deviation from a quadratic divided by the piece's thickness², and minimising their
     /// squares bends the gradients of every nearby vertex (errors of 1e6 on jittered grids
