@@ -63,8 +63,7 @@ impl ViewMode {
     /// Gaussian curvature in 1/length² (None outside curvature plots).
     pub fn unit(self) -> Option<&'static str> {
         match self {
-            ViewMode::Curvature(CurvatureQuantity::Gaussian) => Some("1/length²"),
-            ViewMode::Curvature(_) => Some("1/length"),
+            ViewMode::Curvature(q) => Some(q.unit()),
             _ => None,
         }
     }

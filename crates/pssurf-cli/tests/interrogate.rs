@@ -220,7 +220,8 @@ fn domain_pictures_are_svg() {
         "<polygon",
         "<circle",
         "linearGradient",
-        "mean curvature H",
+        // The legend names the quantity with its unit.
+        "mean curvature H [1/length]",
         "stroke-dasharray",
     ] {
         assert!(text.contains(part), "missing {part}");

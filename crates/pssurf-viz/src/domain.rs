@@ -386,7 +386,7 @@ fn add_legend(
     let mut g = Group::new()
         .set("font-family", "sans-serif")
         .set("font-size", 12)
-        .add(Text::new(q.long_name()).set("x", x).set("y", y + 12.0))
+        .add(Text::new(q.titled()).set("x", x).set("y", y + 12.0))
         .add(
             Rect::new()
                 .set("x", x)

@@ -233,7 +233,7 @@ fn page(
         html_escape(&args.input.display().to_string()),
         panels.first().map_or(0, |p| p.sampled.mesh.positions.len()),
         panels.first().map_or(0, |p| p.sampled.mesh.triangles.len()),
-        q.long_name(),
+        q.titled(),
         r
     );
     for p in panels {

@@ -269,7 +269,7 @@ pub fn plot_sampled(sampled: &SampledSurface, lines: &[Polyline], opts: &PlotOpt
             &mut pixels,
             width,
             area,
-            q.long_name(),
+            &q.titled(),
             &opts.colormap,
             s,
             data.as_ref(),

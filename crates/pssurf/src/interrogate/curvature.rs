@@ -156,6 +156,20 @@ impl CurvatureQuantity {
         }
     }
 
+    /// Its unit: Gaussian curvature is a product of two curvatures (1/length²), the others
+    /// are curvatures (1/length).
+    pub fn unit(self) -> &'static str {
+        match self {
+            CurvatureQuantity::Gaussian => "1/length²",
+            _ => "1/length",
+        }
+    }
+
+    /// The long name with its unit, for legends: `mean curvature H [1/length]`.
+    pub fn titled(self) -> String {
+        format!("{} [{}]", self.long_name(), self.unit())
+    }
+
     /// Whether the quantity takes both signs (then colour ranges are symmetric about 0).
     pub fn is_signed(self) -> bool {
         self != CurvatureQuantity::Absolute

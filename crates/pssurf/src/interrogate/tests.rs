@@ -462,6 +462,15 @@ fn quantity_names_round_trip() {
         Some(CurvatureQuantity::Gaussian)
     );
     assert_eq!(CurvatureQuantity::parse("nope"), None);
+    // Legends carry the unit: K is a product of two curvatures.
+    assert_eq!(
+        CurvatureQuantity::Gaussian.titled(),
+        "Gaussian curvature K [1/length²]"
+    );
+    assert_eq!(
+        CurvatureQuantity::K1.titled(),
+        "principal curvature k1 [1/length]"
+    );
 }
 
 /// A PS surface interpolating a non-polynomial function on a small Delaunay mesh.
