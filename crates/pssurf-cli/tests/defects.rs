@@ -31,6 +31,19 @@ fn one_error(out: &Output) -> String {
     lines[0].to_string()
 }
 
+/// The one error line of running `command` (with `FILE` standing for the path) on a file
+/// `name` holding `contents`.
+fn error_on_file(name: &str, contents: &str, command: &[&str]) -> String {
+    let d = tempfile::tempdir().unwrap();
+    let p = s(&d.path().join(name));
+    std::fs::write(&p, contents).unwrap();
+    let args: Vec<&str> = command
+        .iter()
+        .map(|&a| if a == "FILE" { p.as_str() } else { a })
+        .collect();
+    one_error(&pssurf(&args))
+}
+
 fn small_ups(dir: &Path) -> String {
     let p = dir.join("u.json");
     ok(&[
@@ -275,10 +288,11 @@ fn overlapping_folded_triangles_are_refused() {
 
 #[test]
 fn a_csv_with_duplicate_column_names_is_refused() {
-    let d = tempfile::tempdir().unwrap();
-    let p = d.path().join("d.csv");
-    std::fs::write(&p, "x,y,z,Z\n0,0,0,0\n1,0,0,0\n0,1,0,0\n").unwrap();
-    let e = one_error(&pssurf(&["fit", &s(&p), "-o", "o.json"]));
+    let e = error_on_file(
+        "d.csv",
+        "x,y,z,Z\n0,0,0,0\n1,0,0,0\n0,1,0,0\n",
+        &["fit", "FILE", "-o", "o.json"],
+    );
     assert!(e.contains("appears twice"), "{e}");
 }
 
@@ -665,10 +679,11 @@ fn negative_option_values_are_read_as_values() {
 
 #[test]
 fn a_ragged_csv_row_is_named_with_its_length() {
-    let d = tempfile::tempdir().unwrap();
-    let p = d.path().join("r.csv");
-    std::fs::write(&p, "x,y,z\n1,2,3\n4,5\n").unwrap();
-    let e = one_error(&pssurf(&["fit", &s(&p), "-o", "o.json"]));
+    let e = error_on_file(
+        "r.csv",
+        "x,y,z\n1,2,3\n4,5\n",
+        &["fit", "FILE", "-o", "o.json"],
+    );
     // It was the csv crate's "CSV error: record 2 (line: 3, byte: 12): found record with 2
     // fields, but the previous record has 3 fields".
     assert!(e.contains("row 2 has 2 fields, the header has 3"), "{e}");
@@ -697,9 +712,7 @@ fn a_json_file_where_csv_is_expected_is_named_as_such() {
 #[test]
 fn info_on_a_hole_filling_report_says_it_is_not_a_surface() {
     // It said "line 2, column 2: invalid type: map, expected a string".
-    let d = tempfile::tempdir().unwrap();
-    let p = d.path().join("report.json");
-    std::fs::write(&p, "[\n  {\n    \"g0_max\": 3e-7\n  }\n]\n").unwrap();
-    let e = one_error(&pssurf(&["info", &s(&p)]));
+    let report = "[\n  {\n    \"g0_max\": 3e-7\n  }\n]\n";
+    let e = error_on_file("report.json", report, &["info", "FILE"]);
     assert!(e.contains("not a pssurf surface file"), "{e}");
 }
