@@ -1,10 +1,11 @@
-//! UPS-splines: subdivision, the wavelet transform (forward + inverse) and tessellation by
-//! subdivision, for growing surfaces.
+//! UPS-splines: subdivision, the wavelet transform (forward + inverse, with the thesis' and the
+//! stable update) and tessellation by subdivision, for growing surfaces.
 
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{Point2, Vector3};
 use pssurf::mesh::TriMesh;
 use pssurf::ps::Hermite;
+use pssurf::ups::wavelet::Update;
 use pssurf::ups::{Lattice, LatticePolygon, Ups, UpsGrid};
 use std::hint::black_box;
 
@@ -47,16 +48,18 @@ fn ups(c: &mut Criterion) {
         let s = surface(6, n);
         let coeffs = 3 * s.grid().vertex_count() as u64;
         g.throughput(Throughput::Elements(coeffs));
-        g.bench_with_input(
-            BenchmarkId::new("3 levels, control points", coeffs),
-            &s,
-            |b, s| {
+        // The thesis' update (`pssurf wavelet`, hole filling) and the stable one (denoising).
+        for (name, update) in [
+            ("3 levels, thesis update, control points", Update::Thesis),
+            ("3 levels, stable update, control points", Update::Stable),
+        ] {
+            g.bench_with_input(BenchmarkId::new(name, coeffs), &s, |b, s| {
                 b.iter(|| {
-                    let d = s.wavelet_transform(3).unwrap();
+                    let d = s.wavelet_transform_with(3, update).unwrap();
                     black_box(d.reconstruct())
                 })
-            },
-        );
+            });
+        }
     }
     g.finish();
 
