@@ -13,6 +13,9 @@
 //! local fits extrapolate. (That pays on smooth data; on rough real elevation data the local
 //! estimator is the more accurate, also near the boundary: docs/performance.md.)
 //!
+//! At vertices with a neighbour closer than [`CLOSE`] × the data's extent the anchor is
+//! [`CLOSE_ANCHOR`]: there the values cannot fix slopes to 1e-10, the local fit can.
+//!
 //! A small anchor η × (the vertex's own stiffness) × ‖g_i − g_i^local‖² to the local
 //! estimate ([`super::estimate_gradients`], itself exact on quadratics) makes A positive
 //! definite on every triangulation (the jump energy alone cannot fix a quadratic that
@@ -107,10 +110,11 @@ pub(super) fn anchored_global_gradients(
     // Minimum degree on the vertex graph: an order as good as on the scalar system, found on
     // a graph with half the nodes and a quarter of the edges.
     let pattern = SpdPattern::with_order(2 * n, &positions, Some(&q.elimination_order(2)?))?;
+    let close = close_vertices(basis);
     for eta in std::iter::once(ANCHOR).chain(STRONGER_ANCHORS) {
         let (mut a, mut b) = (entries.clone(), rhs.clone());
         for (i, &(xx, yy, stiffness)) in diagonal.iter().enumerate() {
-            let mu = eta * stiffness;
+            let mu = if close[i] { CLOSE_ANCHOR.max(eta) } else { eta } * stiffness;
             a[xx] += mu;
             a[yy] += mu;
             b[2 * i] += mu * local[i].x;
@@ -132,6 +136,37 @@ pub(super) fn anchored_global_gradients(
     // among others 1e4 away): the anchor's limit, the local estimate itself.
     Ok((local.to_vec(), f64::INFINITY))
 }
+
+/// Which vertices have a neighbour closer than [`CLOSE`] × the data's extent (their
+/// gradients are anchored with [`CLOSE_ANCHOR`]).
+fn close_vertices(basis: &PsBasis) -> Vec<bool> {
+    let tri = basis.triangulation();
+    let (lo, hi) = tri.bounds();
+    let limit = CLOSE * (hi - lo).norm();
+    let mut close = vec![false; tri.vertex_count()];
+    for t in 0..tri.triangle_count() {
+        let v = tri.triangle(t);
+        for k in 0..3 {
+            let (a, b) = (v[k], v[(k + 1) % 3]);
+            if (tri.vertex(a) - tri.vertex(b)).norm() < limit {
+                close[a] = true;
+                close[b] = true;
+            }
+        }
+    }
+    close
+}
+
+/// Between points closer than this fraction of the data's extent, values rounded to 1e-16
+/// fix the slope only to about 2e-10 of the data's scale over its extent; the least-energy
+/// gradients would follow those slopes (quadratics beside a cluster of points 1e-8 apart
+/// were reproduced to 4.8e-8 only). At such vertices the local estimate, whose fit reaches
+/// out to farther points, is kept instead, by a strong anchor.
+pub const CLOSE: f64 = 1e-6;
+
+/// The anchor at vertices with a neighbour closer than [`CLOSE`] × the extent: the result
+/// there is the local estimate to about 1e-3 of the difference.
+pub const CLOSE_ANCHOR: f64 = 1e3;
 
 /// Tᵢᵀ B Tⱼ.
 fn congruence(ti: &[[f64; 3]; 3], b: &[[f64; 3]; 3], tj: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
