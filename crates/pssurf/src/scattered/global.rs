@@ -13,8 +13,9 @@
 //! local fits extrapolate. (That pays on smooth data; on rough real elevation data the local
 //! estimator is the more accurate, also near the boundary: docs/performance.md.)
 //!
-//! At vertices with a neighbour closer than [`CLOSE`] × the data's extent the anchor is
-//! [`CLOSE_ANCHOR`]: there the values cannot fix slopes to 1e-10, the local fit can.
+//! At vertices with a neighbour closer than [`CLOSE`] × the data's extent the gradient is
+//! the local estimate, fixed, and the others are solved for around it: there the values
+//! cannot fix slopes to 1e-10, and the local fit can.
 //!
 //! A small anchor η × (the vertex's own stiffness) × ‖g_i − g_i^local‖² to the local
 //! estimate ([`super::estimate_gradients`], itself exact on quadratics) makes A positive
@@ -85,6 +86,9 @@ pub(super) fn anchored_global_gradients(
     let mut rhs = vec![0.0; 2 * n];
     // For each vertex: where its two diagonal entries are, and its stiffness.
     let mut diagonal = vec![(0, 0, 0.0); n];
+    // Vertices whose gradient is the local estimate (a neighbour closer than `CLOSE`): an
+    // identity row, and their couplings to the others moved to the right-hand side.
+    let fixed = close_vertices(basis);
     for (i, j, block) in q.blocks() {
         // The block in Hermite unknowns (f, g_x, g_y): Tᵢᵀ B Tⱼ.
         let h = congruence(&hermite[i], block, &hermite[j]);
@@ -92,12 +96,21 @@ pub(super) fn anchored_global_gradients(
             for b in 0..2 {
                 if i != j || b <= a {
                     positions.push((2 * i + a, 2 * j + b));
-                    entries.push(h[1 + a][1 + b]);
+                    let free = !fixed[i] && !fixed[j];
+                    entries.push(if free { h[1 + a][1 + b] } else { 0.0 });
+                }
+                if i != j && fixed[j] && !fixed[i] {
+                    rhs[2 * i + a] -= h[1 + a][1 + b] * local[j][b];
+                }
+                if i != j && fixed[i] && !fixed[j] {
+                    rhs[2 * j + b] -= h[1 + a][1 + b] * local[i][a];
                 }
             }
             // The value terms move to the right-hand side (both halves of a symmetric pair).
-            rhs[2 * i + a] -= h[1 + a][0] * values[j];
-            if i != j {
+            if !fixed[i] {
+                rhs[2 * i + a] -= h[1 + a][0] * values[j];
+            }
+            if i != j && !fixed[j] {
                 rhs[2 * j + a] -= h[0][1 + a] * values[i];
             }
         }
@@ -105,16 +118,21 @@ pub(super) fn anchored_global_gradients(
             // The diagonal entries of this block are at k − 3 (aa) and k − 1 (bb).
             let k = entries.len();
             diagonal[i] = (k - 3, k - 1, 0.5 * (h[1][1] + h[2][2]));
+            if fixed[i] {
+                (entries[k - 3], entries[k - 1]) = (1.0, 1.0);
+                rhs[2 * i] = local[i].x;
+                rhs[2 * i + 1] = local[i].y;
+                diagonal[i].2 = 0.0;
+            }
         }
     }
     // Minimum degree on the vertex graph: an order as good as on the scalar system, found on
     // a graph with half the nodes and a quarter of the edges.
     let pattern = SpdPattern::with_order(2 * n, &positions, Some(&q.elimination_order(2)?))?;
-    let close = close_vertices(basis);
     for eta in std::iter::once(ANCHOR).chain(STRONGER_ANCHORS) {
         let (mut a, mut b) = (entries.clone(), rhs.clone());
         for (i, &(xx, yy, stiffness)) in diagonal.iter().enumerate() {
-            let mu = if close[i] { CLOSE_ANCHOR.max(eta) } else { eta } * stiffness;
+            let mu = eta * stiffness;
             a[xx] += mu;
             a[yy] += mu;
             b[2 * i] += mu * local[i].x;
@@ -138,7 +156,7 @@ pub(super) fn anchored_global_gradients(
 }
 
 /// Which vertices have a neighbour closer than [`CLOSE`] × the data's extent (their
-/// gradients are anchored with [`CLOSE_ANCHOR`]).
+/// gradients are the local estimate).
 fn close_vertices(basis: &PsBasis) -> Vec<bool> {
     let tri = basis.triangulation();
     let (lo, hi) = tri.bounds();
@@ -159,14 +177,12 @@ fn close_vertices(basis: &PsBasis) -> Vec<bool> {
 
 /// Between points closer than this fraction of the data's extent, values rounded to 1e-16
 /// fix the slope only to about 2e-10 of the data's scale over its extent; the least-energy
-/// gradients would follow those slopes (quadratics beside a cluster of points 1e-8 apart
-/// were reproduced to 4.8e-8 only). At such vertices the local estimate, whose fit reaches
-/// out to farther points, is kept instead, by a strong anchor.
+/// gradients would follow those slopes, and the cluster's jump terms, growing like its
+/// spacing⁻⁴, would swamp the others in rounding (quadratics beside 100 points within 1e-7
+/// were off by 4.8e-8 to 1.4e-1 depending on the draw). At such vertices the local
+/// estimate, whose fit reaches out to farther points, is taken as it is, and the system is
+/// solved for the other vertices only.
 pub const CLOSE: f64 = 1e-6;
-
-/// The anchor at vertices with a neighbour closer than [`CLOSE`] × the extent: the result
-/// there is the local estimate to about 1e-3 of the difference.
-pub const CLOSE_ANCHOR: f64 = 1e3;
 
 /// Tᵢᵀ B Tⱼ.
 fn congruence(ti: &[[f64; 3]; 3], b: &[[f64; 3]; 3], tj: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {

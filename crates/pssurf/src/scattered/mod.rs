@@ -11,9 +11,7 @@ mod smoothing;
 
 pub use coarse::coarse_triangulation;
 pub use diagnostics::{NearDuplicate, near_duplicate_distance, near_duplicates, slivers};
-pub use global::{
-    ANCHOR, CLOSE, CLOSE_ANCHOR, GlobalGradientError, STRONGER_ANCHORS, estimate_gradients_global,
-};
+pub use global::{ANCHOR, CLOSE, GlobalGradientError, STRONGER_ANCHORS, estimate_gradients_global};
 pub use interpolate::{
     COLLINEAR_HINT, FitError, GradientMethod, GradientReport, Interpolant, PRECISION_HINT,
     check_points, data_basis, data_basis_with, estimate_gradients_by, hermite_data, hermite_spline,
