@@ -141,7 +141,26 @@ fn quadratics_beside_a_cluster_within_1e_7() {
             let err = worst_quadratic_error(&pts, method, 3, &mut r);
             assert!(err < 3e-9, "spread {spread:e}, {method:?}: {err:e}");
         }
+        // The report counts the cluster's vertices that kept their local gradient: those
+        // with a neighbour closer than 1e-6 (of the tightest clusters most points are merged
+        // as nearly coincident first).
+        let z = vec![0.0; pts.len()];
+        let report = interpolate(&pts, &z, GradientMethod::Global)
+            .unwrap()
+            .gradients;
+        assert!(
+            (1..=100).contains(&report.kept_local),
+            "spread {spread:e}: {}",
+            report.kept_local
+        );
     }
+    // Data without close points keep none.
+    let pts = common::random_points_with_boundary(300, 1);
+    let z = vec![0.0; pts.len()];
+    let report = interpolate(&pts, &z, GradientMethod::Global)
+        .unwrap()
+        .gradients;
+    assert_eq!(report.kept_local, 0);
 }
 
 /// With every point of a grid moved by 1e-8 (or 1e-10), Delaunay leaves slivers of

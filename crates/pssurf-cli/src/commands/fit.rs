@@ -237,6 +237,13 @@ pub fn run(args: &FitArgs) -> Result<()> {
                 }
                 None => {}
             }
+            if report.kept_local > 0 {
+                m += &format!(
+                    " ({} vertices closer than {:e} of the data's extent to a neighbour keep their local estimate: there the values cannot fix slopes to 1e-10)",
+                    report.kept_local,
+                    pssurf::scattered::CLOSE
+                );
+            }
             if report.widened > 0 || report.planar > 0 {
                 m += &format!(
                     " (local fits: {} vertices needed a wider neighbourhood, {} a plane)",

@@ -157,7 +157,7 @@ pub(super) fn anchored_global_gradients(
 
 /// Which vertices have a neighbour closer than [`CLOSE`] × the data's extent (their
 /// gradients are the local estimate).
-fn close_vertices(basis: &PsBasis) -> Vec<bool> {
+pub(super) fn close_vertices(basis: &PsBasis) -> Vec<bool> {
     let tri = basis.triangulation();
     let (lo, hi) = tri.bounds();
     let limit = CLOSE * (hi - lo).norm();

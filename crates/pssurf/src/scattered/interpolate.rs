@@ -330,6 +330,9 @@ pub struct GradientReport {
     /// triangulations; see [`STRONGER_ANCHORS`](super::STRONGER_ANCHORS)); infinity when
     /// no anchor made it factorisable and the local estimate was used.
     pub stronger_anchor: Option<f64>,
+    /// With the global method: vertices that kept their local estimate because a neighbour
+    /// lies closer than [`CLOSE`](super::CLOSE) × the data's extent.
+    pub kept_local: usize,
 }
 
 /// The gradients at the vertices of `basis`'s triangulation from the values there, by
@@ -351,6 +354,7 @@ pub fn estimate_gradients_by(
             .filter(|(_, k)| *k == GradientFit::Linear)
             .count(),
         stronger_anchor: None,
+        kept_local: 0,
     };
     let local: Vec<Vector2<f64>> = local.into_iter().map(|(g, _)| g).collect();
     let gradients = match method {
@@ -360,6 +364,10 @@ pub fn estimate_gradients_by(
             if eta > super::ANCHOR {
                 report.stronger_anchor = Some(eta);
             }
+            report.kept_local = super::global::close_vertices(basis)
+                .iter()
+                .filter(|&&c| c)
+                .count();
             g
         }
     };
