@@ -111,6 +111,17 @@ fn reference_point(v: &[f64], uv: Point2<f64>) -> Vector3<f64> {
     num / den
 }
 
+/// Whether the directory entry whose first line is `entry` (1-based line of section D)
+/// points to a transformation matrix (field 7, columns 49–56).
+fn is_transformed(text: &str, entry: usize) -> bool {
+    let line = text
+        .lines()
+        .filter(|l| l.len() >= 73 && &l[72..73] == "D")
+        .nth(entry - 1)
+        .unwrap();
+    line[48..56].trim().parse::<i64>().unwrap_or(0) != 0
+}
+
 #[test]
 fn every_sample_file_loads_and_its_surfaces_match_a_reference_reading() {
     let mut r = rng(1710);
@@ -121,12 +132,7 @@ fn every_sample_file_loads_and_its_surfaces_match_a_reference_reading() {
         assert_eq!(model.surfaces.len(), surfaces, "{name}");
         for s in &model.surfaces {
             // Surfaces without a transformation: the reference reading has none to apply.
-            let entry_line = text
-                .lines()
-                .filter(|l| l.len() >= 73 && &l[72..73] == "D")
-                .nth(s.entry - 1)
-                .unwrap();
-            if entry_line[48..56].trim().parse::<i64>().unwrap_or(0) != 0 {
+            if is_transformed(&text, s.entry) {
                 continue;
             }
             let v = reference_params(&text, s.entry);
@@ -386,12 +392,7 @@ fn sample_surfaces_are_imported_on_their_declared_parameter_ranges() {
                 narrower += 1;
             }
             // The same points as the whole surface of the file (where it is untransformed).
-            let entry_line = text
-                .lines()
-                .filter(|l| l.len() >= 73 && &l[72..73] == "D")
-                .nth(s.entry - 1)
-                .unwrap();
-            if entry_line[48..56].trim().parse::<i64>().unwrap_or(0) != 0 {
+            if is_transformed(&text, s.entry) {
                 continue;
             }
             for _ in 0..5 {

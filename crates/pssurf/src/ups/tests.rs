@@ -546,26 +546,38 @@ fn every_complementary_sequence_sums_to_zero() {
                 assert!(k[s].iter().all(|&x| (x - 0.125).abs() < 1e-15), "{name}");
             }
         }
-        let zero = Ups::<f64>::from_parts(coarse_grid.clone(), vec![[0.0; 3]; coarse_grid.slots()]);
-        let template = wavelet::DetailLevel {
-            grid: g.clone(),
-            details: vec![[0.0f64; 3]; g.slots()],
-        };
-        for s in template.detail_slots().collect::<Vec<_>>() {
-            for c in 0..3 {
-                let mut level = template.clone();
-                level.details[s][c] = 1.0;
-                let fine = Ups::wavelet_inverse_step(&zero, &level);
-                let sum: f64 = g
-                    .real_slots()
-                    .iter()
-                    .map(|&v| fine.blocks()[v].iter().sum::<f64>())
-                    .sum();
-                assert!(
-                    sum.abs() < 1e-14,
-                    "{name}: slot {s} component {c}: sum {sum:e}"
-                );
-            }
+        assert_complementary_sequences_sum_to_zero(&name, &g, wavelet::Update::Thesis, 1e-14);
+    }
+}
+
+/// One detail coefficient set to one, everything else zero, one inverse step with `update`:
+/// the fine coefficients sum to zero (Property 4.3), to `tolerance`.
+fn assert_complementary_sequences_sum_to_zero(
+    name: &str,
+    g: &UpsGrid,
+    update: wavelet::Update,
+    tolerance: f64,
+) {
+    let coarse_grid = g.coarsened().unwrap();
+    let zero = Ups::<f64>::from_parts(coarse_grid.clone(), vec![[0.0; 3]; coarse_grid.slots()]);
+    let template = wavelet::DetailLevel {
+        grid: g.clone(),
+        details: vec![[0.0f64; 3]; g.slots()],
+    };
+    for s in template.detail_slots().collect::<Vec<_>>() {
+        for c in 0..3 {
+            let mut level = template.clone();
+            level.details[s][c] = 1.0;
+            let fine = Ups::wavelet_inverse_step_with(&zero, &level, update);
+            let sum: f64 = g
+                .real_slots()
+                .iter()
+                .map(|&v| fine.blocks()[v].iter().sum::<f64>())
+                .sum();
+            assert!(
+                sum.abs() < tolerance,
+                "{name} ({update:?}): slot {s} component {c}: sum {sum:e}"
+            );
         }
     }
 }
@@ -589,28 +601,7 @@ fn the_stable_update_reconstructs_keeps_averages_and_does_not_amplify_noise() {
             assert!(worst < 1e-13, "{name} f={f}: {worst:e}");
         }
         // Complementary sequences sum to zero (Property 4.3), boundary cases included.
-        let coarse_grid = g.coarsened().unwrap();
-        let zero = Ups::<f64>::from_parts(coarse_grid.clone(), vec![[0.0; 3]; coarse_grid.slots()]);
-        let template = wavelet::DetailLevel {
-            grid: g.clone(),
-            details: vec![[0.0f64; 3]; g.slots()],
-        };
-        for s in template.detail_slots().collect::<Vec<_>>() {
-            for c in 0..3 {
-                let mut level = template.clone();
-                level.details[s][c] = 1.0;
-                let fine = Ups::wavelet_inverse_step_with(&zero, &level, wavelet::Update::Stable);
-                let sum: f64 = g
-                    .real_slots()
-                    .iter()
-                    .map(|&v| fine.blocks()[v].iter().sum::<f64>())
-                    .sum();
-                assert!(
-                    sum.abs() < 1e-13,
-                    "{name}: slot {s} component {c}: sum {sum:e}"
-                );
-            }
-        }
+        assert_complementary_sequences_sum_to_zero(&name, &g, wavelet::Update::Stable, 1e-13);
     }
     // Pure noise of size 1: the thesis' coarse coefficients after three levels are about 7
     // (the scaling step doubles the shape noise per level), the stable ones about 1.
