@@ -480,12 +480,7 @@ fn wavelet_transform_reconstructs_perfectly() {
             assert_eq!(dec.levels.len(), f as usize);
             let back = dec.reconstruct();
             assert_eq!(back.grid(), ups.grid());
-            let worst = back
-                .blocks()
-                .iter()
-                .zip(ups.blocks())
-                .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).norm()))
-                .fold(0.0, f64::max);
+            let worst = largest_difference(&back, &ups);
             assert!(worst < 1e-13, "{name} f={f}: {worst:e}");
         }
         assert!(matches!(
@@ -550,6 +545,15 @@ fn every_complementary_sequence_sums_to_zero() {
     }
 }
 
+/// The largest distance between corresponding control points of two surfaces on one grid.
+fn largest_difference(a: &Ups<Vector3<f64>>, b: &Ups<Vector3<f64>>) -> f64 {
+    a.blocks()
+        .iter()
+        .zip(b.blocks())
+        .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).norm()))
+        .fold(0.0, f64::max)
+}
+
 /// One detail coefficient set to one, everything else zero, one inverse step with `update`:
 /// the fine coefficients sum to zero (Property 4.3), to `tolerance`.
 fn assert_complementary_sequences_sum_to_zero(
@@ -592,12 +596,7 @@ fn the_stable_update_reconstructs_keeps_averages_and_does_not_amplify_noise() {
                 .wavelet_transform_with(f, wavelet::Update::Stable)
                 .unwrap();
             let back = dec.reconstruct();
-            let worst = back
-                .blocks()
-                .iter()
-                .zip(ups.blocks())
-                .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).norm()))
-                .fold(0.0, f64::max);
+            let worst = largest_difference(&back, &ups);
             assert!(worst < 1e-13, "{name} f={f}: {worst:e}");
         }
         // Complementary sequences sum to zero (Property 4.3), boundary cases included.
