@@ -121,9 +121,9 @@ impl PsBasis {
             }
         });
         // Ranges of vertices in parallel, each adding the elements of the triangles whose
-        // smallest vertex is in it: consecutive triangles are near each other in memory
-        // (triangles come in no useful order, vertices in a spatial one), and most of their
-        // blocks are in the range's own rows.
+        // smallest vertex is in it: the rows are what the ranges own, so this holds for any
+        // triangle order (Delaunay triangulations come in a spatial one, a user's in any),
+        // and with vertices in a spatial order most blocks fall in the range's own rows.
         q.add_elements_by_range(2048, |range, add| {
             let mut add = |e: &Element| add(&e.vertices[..e.len], &e.matrix);
             for i in range {
