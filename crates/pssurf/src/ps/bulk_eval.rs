@@ -11,6 +11,7 @@ use super::grid_scan::SCAN_POINTS_PER_TRIANGLE;
 use super::net::SUB_ORDINATES;
 use super::spline::{Evaluator, PsSpline};
 use crate::geometry::Bary;
+use crate::surface::for_each_chunk;
 use crate::triangulation::morton_order;
 use crate::vector::Vector;
 
@@ -120,20 +121,29 @@ impl<V: Vector> PsSpline<V> {
         }
     }
 
-    /// `f(evaluator, p)` for scattered points: they are visited in Morton (Z-curve) order,
-    /// in parallel chunks, so that each walk from the previous point is short and touches
-    /// nearby memory; the results come back in the caller's order. For coherent points
-    /// (already ordered along a path) [`PsSpline::map_points`] saves the sort.
+    /// `f(evaluator, p)` for scattered points: they are visited cell by cell along the
+    /// Morton curve ([`cell_order`]), in parallel chunks, so that each walk from the
+    /// previous point is short and touches nearby memory; the results come back in the
+    /// caller's order. For coherent points (already ordered along a path)
+    /// [`PsSpline::map_points`] saves the sort.
     pub fn map_scattered<T: Send + Copy + Default>(
         &self,
         points: &[Point2<f64>],
         f: impl Fn(&mut Evaluator<'_, V>, Point2<f64>) -> T + Sync,
     ) -> Vec<T> {
         let order = morton_order(points);
+        // Gathered first: the loads are independent there, while inside the walk each
+        // would stall it.
         let sorted: Vec<Point2<f64>> = order.par_iter().map(|&k| points[k as usize]).collect();
-        let values = self.map_points(&sorted, f);
+        let mut in_order = vec![T::default(); points.len()];
+        for_each_chunk(&sorted, &mut in_order, 1, |pts, values| {
+            let mut ev = self.evaluator_near(pts[0]);
+            for (v, &p) in values.iter_mut().zip(pts) {
+                *v = f(&mut ev, p);
+            }
+        });
         let mut out = vec![T::default(); points.len()];
-        for (&k, v) in order.iter().zip(values) {
+        for (&k, v) in order.iter().zip(in_order) {
             out[k as usize] = v;
         }
         out

@@ -4,6 +4,7 @@
 mod delaunay;
 mod error;
 mod locate;
+mod order;
 mod validate;
 
 pub use delaunay::{COORDINATE_RESOLUTION, PEEL_THICKNESS};
@@ -19,6 +20,7 @@ pub const MAX_COORDINATE: f64 = 1e60;
 /// nonzero coordinates below 2^-142 ≈ 1.8e-43.
 pub const MIN_COORDINATE: f64 = 1e-42;
 pub use locate::{Cursor, INSIDE_TOLERANCE, Location};
+pub use order::morton_order;
 
 use std::sync::OnceLock;
 
@@ -274,122 +276,6 @@ pub fn duplicate_points(points: &[Point2<f64>]) -> Option<(usize, usize)> {
 
 /// Above this many points [`duplicate_points`] sorts in parallel.
 const PARALLEL_SORT: usize = 1 << 16;
-
-/// Indices of `points` sorted by their Morton (Z-order) code on a 2^16 × 2^16 grid over
-/// their bounding box (ties in the order given).
-pub fn morton_order(points: &[Point2<f64>]) -> Vec<u32> {
-    let (mut lo, mut hi) = (
-        Point2::new(f64::INFINITY, f64::INFINITY),
-        Point2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
-    );
-    for p in points {
-        lo = Point2::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Point2::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
-    let scale = [
-        65535.0 / (hi.x - lo.x).max(f64::MIN_POSITIVE),
-        65535.0 / (hi.y - lo.y).max(f64::MIN_POSITIVE),
-    ];
-    let spread = |v: u32| {
-        let mut x = v as u64 & 0xffff;
-        x = (x | (x << 8)) & 0x00ff_00ff;
-        x = (x | (x << 4)) & 0x0f0f_0f0f;
-        x = (x | (x << 2)) & 0x3333_3333;
-        x = (x | (x << 1)) & 0x5555_5555;
-        x
-    };
-    // (Casts saturate: NaN and infinite coordinates get some code, never a panic.) The
-    // index in the low bits keeps ties in the given order.
-    let mut keyed: Vec<u64> = points
-        .par_iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let x = ((p.x - lo.x) * scale[0]) as u32;
-            let y = ((p.y - lo.y) * scale[1]) as u32;
-            ((spread(x) | (spread(y) << 1)) << 32) | i as u64
-        })
-        .collect();
-    if keyed.len() > RADIX_SORT {
-        sort_by_high_half(&mut keyed);
-    } else {
-        keyed.sort_unstable();
-    }
-    keyed.into_iter().map(|k| k as u32).collect()
-}
-
-/// Above this many points [`morton_order`] sorts by radix.
-const RADIX_SORT: usize = 1 << 12;
-
-/// Sorts `keys` by their upper 32 bits, stably: a least-significant-digit radix sort, four
-/// passes of 8-bit digits with their histograms counted in one read (a pass whose digit is
-/// the same for all keys is skipped). 256 buckets keep the scattered writes within cache:
-/// `morton_order` of 1M points takes 33 ms on one core with it against 52 ms with
-/// `sort_unstable` (a two-pass 16-bit-digit counting sort was slower than both). Large inputs
-/// sort their two halves on two threads and merge them.
-fn sort_by_high_half(keys: &mut Vec<u64>) {
-    let mut buffer = vec![0u64; keys.len()];
-    if keys.len() < PARALLEL_RADIX || rayon::current_num_threads() < 2 {
-        radix_passes(keys, &mut buffer);
-        return;
-    }
-    let half = keys.len() / 2;
-    let (left, right) = keys.split_at_mut(half);
-    let (left_buffer, right_buffer) = buffer.split_at_mut(half);
-    rayon::join(
-        || radix_passes(left, left_buffer),
-        || radix_passes(right, right_buffer),
-    );
-    // A stable merge: on equal upper halves the left one (earlier index) first.
-    let (mut a, mut b) = (0, half);
-    for out in buffer.iter_mut() {
-        let take_left = b == keys.len() || (a < half && keys[a] >> 32 <= keys[b] >> 32);
-        if take_left {
-            *out = keys[a];
-            a += 1;
-        } else {
-            *out = keys[b];
-            b += 1;
-        }
-    }
-    std::mem::swap(keys, &mut buffer);
-}
-
-/// Above this many keys [`sort_by_high_half`] sorts its halves in parallel.
-const PARALLEL_RADIX: usize = 1 << 18;
-
-/// The radix passes of [`sort_by_high_half`] on `keys`, with `buffer` (as long) as scratch.
-fn radix_passes(keys: &mut [u64], buffer: &mut [u64]) {
-    let mut counts = [[0usize; 256]; 4];
-    for &k in keys.iter() {
-        for (d, c) in counts.iter_mut().enumerate() {
-            c[((k >> (32 + 8 * d)) & 0xff) as usize] += 1;
-        }
-    }
-    let (mut from, mut to) = (keys, buffer);
-    let mut swapped = false;
-    for (d, c) in counts.iter().enumerate() {
-        if c.contains(&from.len()) {
-            continue; // one digit for all: the order stays
-        }
-        let mut start = [0usize; 256];
-        let mut sum = 0;
-        for (s, &n) in start.iter_mut().zip(c) {
-            *s = sum;
-            sum += n;
-        }
-        for &k in from.iter() {
-            let b = ((k >> (32 + 8 * d)) & 0xff) as usize;
-            to[start[b]] = k;
-            start[b] += 1;
-        }
-        std::mem::swap(&mut from, &mut to);
-        swapped = !swapped;
-    }
-    if swapped {
-        // The sorted keys are in the buffer.
-        to.copy_from_slice(from);
-    }
-}
 
 #[cfg(test)]
 mod tests;

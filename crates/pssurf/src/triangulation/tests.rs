@@ -450,7 +450,7 @@ fn radix_sort_by_the_upper_half_is_a_stable_sort() {
             .collect();
         let mut want = keys.clone();
         want.sort_by_key(|k| k >> 32);
-        super::sort_by_high_half(&mut keys);
+        super::order::sort_by_high_half(&mut keys);
         assert_eq!(keys, want);
     }
 }
