@@ -80,6 +80,17 @@ pub enum SubdivisionError {
     /// The tension is not finite.
     #[error("the tension must be a finite number, not {0}")]
     BadTension(f64),
+    /// A point left the representable range (a four-point tension far outside the scheme's
+    /// convergent range multiplies the polygon at every step).
+    #[error(
+        "after {step} steps a point has a coordinate beyond ±1e60 (tension {tension}): the scheme diverges"
+    )]
+    Diverges {
+        /// The step (from 1) after which it happened.
+        step: usize,
+        /// The tension w.
+        tension: f64,
+    },
     /// The result would be too large.
     #[error("{times} steps would make {points} points (at most {MAX_SUBDIVISION_POINTS})")]
     TooLarge {
@@ -106,8 +117,13 @@ pub fn subdivide_curve<V: Vector>(
         }
     }
     let mut p = points.to_vec();
-    for _ in 0..times {
+    for k in 1..=times {
         p = step(&p, closed, scheme);
+        if let CurveScheme::FourPoint { tension } = scheme
+            && !p.iter().all(|q| q.in_range())
+        {
+            return Err(SubdivisionError::Diverges { step: k, tension });
+        }
     }
     Ok(p)
 }

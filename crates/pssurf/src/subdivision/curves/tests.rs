@@ -162,4 +162,13 @@ fn counts_and_refusals() {
         subdivide_curve(&p, false, CurveScheme::FourPoint { tension: f64::NAN }, 1),
         Err(SubdivisionError::BadTension(_))
     ));
+    // A finite tension far outside the convergent range overflows: refused, not written as
+    // inf and NaN.
+    for (tension, step) in [(1e308, 1), (1e100, 1), (1e25, 3)] {
+        assert_eq!(
+            subdivide_curve(&p, false, CurveScheme::FourPoint { tension }, 3),
+            Err(SubdivisionError::Diverges { step, tension }),
+            "tension {tension}"
+        );
+    }
 }
