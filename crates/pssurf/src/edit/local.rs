@@ -861,12 +861,23 @@ pub fn edit_locally(surface: &mut Surface, req: &EditRequest) -> Result<LocalEdi
     let main = Targets(vec![(req.measure, req.target)]);
     let mut outcome = solver.iterate(&main, zero.clone());
     let mut iterations = 0;
+    let reached_now =
+        |solver: &Solver| (req.measure).of(&solver.surface.piece_jet(solver.piece, &solver.at));
+    // The value closest to the target over every attempt (the start included), for the
+    // message when none reaches it.
+    let mut closest = before;
+    let note = |closest: &mut f64, v: Option<f64>| {
+        if let Some(v) = v.filter(|v| (v - req.target).abs() < (*closest - req.target).abs()) {
+            *closest = v;
+        }
+    };
     // K is quadratic in the second derivatives: at a flat point its gradient vanishes. Seed
     // with normal curvatures in u and v whose product is the target, then go on.
     if req.measure == Measure::Gaussian
         && let Ok((_, false, it)) = &outcome
     {
         iterations += it;
+        note(&mut closest, reached_now(&solver));
         let root = req.target.abs().sqrt();
         let seed = Targets(vec![
             (Measure::NormalU, root),
@@ -882,10 +893,8 @@ pub fn edit_locally(surface: &mut Surface, req: &EditRequest) -> Result<LocalEdi
     }
     let result = outcome.and_then(|(y, done, it)| {
         iterations += it;
-        let reached = req
-            .measure
-            .of(&solver.surface.piece_jet(solver.piece, &solver.at))
-            .unwrap_or(f64::NAN);
+        let reached = reached_now(&solver).unwrap_or(f64::NAN);
+        note(&mut closest, Some(reached));
         if done {
             Ok((y, reached))
         } else {
@@ -899,7 +908,7 @@ pub fn edit_locally(surface: &mut Surface, req: &EditRequest) -> Result<LocalEdi
                 measure: req.measure.description(),
                 target: req.target,
                 before,
-                reached,
+                reached: closest,
                 keeps: keeps.to_string(),
             })
         }
