@@ -115,8 +115,11 @@ fn check_headers(path: &Path, headers: &[String]) -> Result<()> {
             short(only)
         );
     }
-    for (k, h) in headers.iter().enumerate() {
-        if headers[..k].iter().any(|g| g.eq_ignore_ascii_case(h)) {
+    // A set, not a comparison of each name with every earlier one: a header line of
+    // 200,000 names took 78 s that way.
+    let mut seen = std::collections::HashSet::with_capacity(headers.len());
+    for h in headers {
+        if !seen.insert(h.to_ascii_lowercase()) {
             bail!(
                 "{}: the column name `{}` appears twice",
                 path.display(),
