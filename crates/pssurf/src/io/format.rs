@@ -526,11 +526,27 @@ fn read_uniform(u: &UniformSection, file: &FileV1) -> Result<UpsGrid, FormatErro
     }
     let polygon =
         LatticePolygon::new(u.polygon.clone()).map_err(|e| invalid("uniform.polygon", e))?;
+    // One control entry per lattice point of the polygon: counted from its corners before
+    // the lattice is built (a 9 KB file naming a polygon of 1e9 lattice points took 62 s
+    // and 6 GB to be refused for its 61 control entries).
+    let (field, found) = match (&file.control, &file.control_points) {
+        (Some(c), _) => ("control", c.len()),
+        (None, Some(c)) => ("control_points", c.len()),
+        (None, None) => return Err(invalid("control_points", "missing")),
+    };
+    let expected = polygon.lattice_point_count();
+    if expected != found as u128 {
+        return Err(invalid(
+            field,
+            format!("expected one entry per vertex ({expected}), found {found}"),
+        ));
+    }
     let lattice = Lattice {
         base: u.base,
         origin: Point2::new(u.origin[0], u.origin[1]),
     };
     let grid = UpsGrid::new(lattice, polygon).map_err(|e| invalid("uniform", e))?;
+    debug_assert_eq!(grid.vertex_count() as u128, expected, "Pick's theorem");
     // A uniform file may leave out its general form (binary files do): the lattice and the
     // polygon determine it. When it is given, it must be exactly that.
     if let Some(domain) = file.domain.as_ref() {
