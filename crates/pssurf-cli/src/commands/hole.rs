@@ -146,6 +146,8 @@ pub fn run_fill(args: &FillHoleArgs) -> Result<()> {
 /// Fills every hole, printing the residual per iteration and the quality report.
 fn fill_all(holes: Vec<HoleBoundary>, opts: &FillOptions) -> Result<Vec<FilledHole>> {
     let count = holes.len();
+    let sides: Vec<usize> = holes.iter().map(|h| h.len()).collect();
+    fill_estimate(&sides, opts).check()?;
     let mut out = Vec::new();
     for (k, hole) in holes.into_iter().enumerate() {
         let filled = fill_hole(hole, opts)?;
@@ -162,6 +164,44 @@ fn fill_all(holes: Vec<HoleBoundary>, opts: &FillOptions) -> Result<Vec<FilledHo
         out.push(filled);
     }
     Ok(out)
+}
+
+/// Peak memory per vertex of the finest patches, bytes: the fill's UPS surfaces, the
+/// patch's general form, its quality report, and the patches kept for writing (measured
+/// 3.4 kB for one 3-sided hole at 8 and 9 steps: 149 and 452 MB for 33,153 and 131,841
+/// vertices; 4.5 kB for the three holes of `example prism-cap` at 8 steps), with a margin.
+const FILL_MEMORY_PER_VERTEX: u64 = 5 * 1024;
+
+/// Bytes of the written patch per vertex (three control points in JSON; 348 measured).
+const FILL_OUTPUT_PER_VERTEX: u64 = 400;
+
+/// The cost of filling holes of `sides` curves each as far as `opts` may refine them (the
+/// fixed number of steps, or the most steps towards the tolerance); all patches are kept
+/// until they are written.
+fn fill_estimate(sides: &[usize], opts: &FillOptions) -> crate::budget::Estimate {
+    let level = opts
+        .iterations
+        .unwrap_or(opts.max_iterations)
+        .min(MAX_ITERATIONS);
+    let vertices = sides
+        .iter()
+        .map(|&n| {
+            pssurf::ups::LatticePolygon::standard(n, 1 << level).map_or(0, |p| {
+                u64::try_from(p.lattice_point_count()).unwrap_or(u64::MAX)
+            })
+        })
+        .fold(0u64, u64::saturating_add);
+    let holes = match sides {
+        [n] => format!("a {n}-sided hole"),
+        _ => format!("{} holes", sides.len()),
+    };
+    crate::budget::Estimate {
+        what: format!("filling {holes} with up to {level} refinement steps"),
+        makes: format!("{} vertices", crate::budget::count(vertices)),
+        memory: crate::budget::load_memory(0)
+            .saturating_add(vertices.saturating_mul(FILL_MEMORY_PER_VERTEX)),
+        output: vertices.saturating_mul(FILL_OUTPUT_PER_VERTEX),
+    }
 }
 
 /// The residual per iteration and the quality numbers.
@@ -417,6 +457,9 @@ pub struct ExampleArgs {
 /// DIR/NAME-METHOD-patch-K.json for every interior method.
 pub fn run_example(args: &ExampleArgs) -> Result<()> {
     let opts = args.iteration.options()?;
+    // Refused before anything is written or printed.
+    let holes = example(&args.name).expect("a known example")?.holes;
+    fill_estimate(&holes.iter().map(|h| h.len()).collect::<Vec<_>>(), &opts).check()?;
     crate::output::create_folder(&args.output)?;
     let methods: Vec<Interior> = if args.all_methods {
         Interior::ALL.to_vec()

@@ -6,7 +6,7 @@ use nalgebra::{Point2, Vector3};
 use super::HoleError;
 use super::boundary::unit;
 use super::fill::{HoleFill, IterationRecord};
-use crate::interrogate::fairness::{DEFAULT_QUADRATURE_DEGREE, fairness};
+use crate::interrogate::fairness::{DEFAULT_QUADRATURE_DEGREE, fairness_integrals};
 use crate::ups::Ups;
 
 /// Samples per boundary curve for G0 and G1, at the parameters (i + ½)/N (the curves' ends
@@ -90,15 +90,15 @@ pub fn quality(fill: &HoleFill, patch: &Ups<Vector3<f64>>) -> Result<QualityRepo
     }
     let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt();
     let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
-    let f = fairness(&ps, DEFAULT_QUADRATURE_DEGREE);
+    let f = fairness_integrals(&ps, DEFAULT_QUADRATURE_DEGREE);
     Ok(QualityReport {
         model_size: b.size(),
         g0_max: max(&g0),
         g0_rms: rms(&g0),
         g1_max_degrees: max(&g1),
         g1_rms_degrees: rms(&g1),
-        mean_curvature_squared: f.integrals.mean_squared,
-        thin_plate: f.integrals.thin_plate,
+        mean_curvature_squared: f.mean_squared,
+        thin_plate: f.thin_plate,
         singular_corners: (0..n)
             .filter(|&c| b.is_singular_corner(c))
             .map(|c| SingularCorner {

@@ -38,6 +38,7 @@ pub use curvature::{
 pub use even_lines::{EvenLines, even_field_lines};
 pub use fairness::{
     DEFAULT_QUADRATURE_DEGREE, Fairness, FairnessIntegrals, QuantityStats, fairness,
+    fairness_integrals,
 };
 pub use field::{FIELD_VARIABLES, FieldError, SurfaceField};
 pub use field_lines::{
