@@ -61,6 +61,27 @@ fn small_ups(dir: &Path) -> String {
     s(&p)
 }
 
+/// A small UPS file whose polygon holds 2.1e9 lattice points but whose control list has 16
+/// entries: refused for the count before the lattice is built (it took 62 s and 6 GB).
+#[test]
+fn a_ups_file_whose_polygon_outgrows_its_control_points_is_refused_at_once() {
+    let d = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(small_ups(d.path())).unwrap();
+    let huge = text.replacen(
+        "\"polygon\":[[0,0],[3,0],[3,3],[0,3]]",
+        "\"polygon\":[[0,0],[46000,0],[46000,46000],[0,46000]]",
+        1,
+    );
+    assert_ne!(huge, text, "the polygon was replaced");
+    let p = d.path().join("big.json");
+    std::fs::write(&p, huge).unwrap();
+    let e = one_error(&pssurf(&["info", &s(&p)]));
+    assert!(
+        e.contains("expected one entry per vertex (2116092001), found 16"),
+        "{e}"
+    );
+}
+
 #[test]
 fn new_ups_with_base_1e200_is_refused_and_writes_nothing() {
     let d = tempfile::tempdir().unwrap();
@@ -294,6 +315,12 @@ fn a_csv_with_duplicate_column_names_is_refused() {
         &["fit", "FILE", "-o", "o.json"],
     );
     assert!(e.contains("appears twice"), "{e}");
+    // 200,000 names, the last repeating the first: each used to be compared with every
+    // earlier one (78 s); a set takes a fraction of a second.
+    let names: Vec<String> = (0..200_000).map(|k| format!("c{k}")).collect();
+    let header = format!("x,y,z,{},C0\n", names.join(","));
+    let e = error_on_file("w.csv", &header, &["fit", "FILE", "-o", "o.json"]);
+    assert!(e.contains("the column name `C0` appears twice"), "{e}");
 }
 
 #[test]
@@ -715,4 +742,64 @@ fn info_on_a_hole_filling_report_says_it_is_not_a_surface() {
     let report = "[\n  {\n    \"g0_max\": 3e-7\n  }\n]\n";
     let e = error_on_file("report.json", report, &["info", "FILE"]);
     assert!(e.contains("not a pssurf surface file"), "{e}");
+}
+
+/// Refining holes nine times made 132k-vertex patches per hole whose quality report kept
+/// every quadrature node (8 GB against a 256 MB budget): the fill is now estimated first.
+#[test]
+fn hole_filling_beyond_the_memory_budget_is_refused_before_it_starts() {
+    let d = tempfile::tempdir().unwrap();
+    let out = s(&d.path().join("ex"));
+    let e = one_error(&pssurf(&[
+        "--max-memory",
+        "256M",
+        "example",
+        "prism-cap",
+        "--iterations",
+        "9",
+        "-o",
+        &out,
+    ]));
+    assert!(
+        e.contains(
+            "filling 3 holes with up to 9 refinement steps (395,523 vertices) would need about"
+        ),
+        "{e}"
+    );
+    assert!(!d.path().join("ex").exists(), "nothing written");
+}
+
+/// An unreachable K: the Gaussian re-seeding ended farther from the target than the start,
+/// and that last value was named "the closest" (2.7e-5 from 0.68, for a target of 1e6).
+#[test]
+fn an_unreachable_edit_names_the_closest_value_over_every_attempt() {
+    let d = tempfile::tempdir().unwrap();
+    let u = s(&d.path().join("u.json"));
+    ok(&[
+        "new",
+        "ups",
+        "--sides",
+        "6",
+        "--size",
+        "4",
+        "--height",
+        "sin(x)*cos(y)",
+        "-o",
+        &u,
+    ]);
+    let o = s(&d.path().join("o.json"));
+    let e = one_error(&pssurf(&[
+        "edit", &u, "--at", "5,3", "--set", "K=1e6", "-o", &o,
+    ]));
+    let number = |after: &str| -> f64 {
+        let rest = &e[e.find(after).unwrap_or_else(|| panic!("{e}")) + after.len()..];
+        let end = rest.find([' ', ')', ';']).unwrap();
+        rest[..end].parse().unwrap()
+    };
+    let (closest, start) = (number("the closest was "), number("(from "));
+    assert!(
+        (closest - 1e6).abs() <= (start - 1e6).abs(),
+        "closest {closest}, start {start}: {e}"
+    );
+    assert!(!d.path().join("o.json").exists());
 }
