@@ -377,12 +377,12 @@ impl<S: ParametricSurface + ?Sized> Walker<'_, S> {
             if out.len() >= self.opts.max_points {
                 return (out, LineEnd::Limit);
             }
-            let a = match self.ode.advance(self.flow, &y, &k, h, &mut cursor) {
+            let mut a = match self.ode.advance(self.flow, &y, &k, h, &mut cursor) {
                 Ok(a) => a,
                 Err(halt) => return (out, LineEnd::from_halt(halt)),
             };
-            let (from, to) = (Point2::new(y[0], y[1]), Point2::new(a.y[0], a.y[1]));
-            let Ok(p) = self
+            let (from, mut to) = (Point2::new(y[0], y[1]), Point2::new(a.y[0], a.y[1]));
+            let Ok(mut p) = self
                 .flow
                 .surface
                 .jet_with(to, &mut cursor)
@@ -390,6 +390,32 @@ impl<S: ParametricSurface + ?Sized> Walker<'_, S> {
             else {
                 return (out, LineEnd::Boundary);
             };
+            let step = (p - last).norm();
+            let at_limit = length + step >= self.opts.length;
+            if length + step > self.opts.length {
+                // The step overshoots the length: take the part of it that ends there (a
+                // step's length in space is proportional to its size to first order, so a
+                // few rescalings reach it to rounding).
+                let want = self.opts.length - length;
+                let (mut size, mut got) = (a.taken, step);
+                for _ in 0..4 {
+                    size *= want / got;
+                    let Ok(b) = self.ode.advance(self.flow, &y, &k, size, &mut cursor) else {
+                        break;
+                    };
+                    let Ok(q) = (self.flow.surface)
+                        .jet_with(Point2::new(b.y[0], b.y[1]), &mut cursor)
+                        .map(|j| j.jet.value)
+                    else {
+                        break;
+                    };
+                    (size, got) = (b.taken, (q - last).norm());
+                    (a, to, p) = (b, Point2::new(b.y[0], b.y[1]), q);
+                    if (got - want).abs() <= 1e-9 * want || got == 0.0 {
+                        break;
+                    }
+                }
+            }
             length += (p - last).norm();
             // Closed: back at the seed, heading the same way, after going well away from it.
             // The chord deviates from the arc by up to |chord| φ / 8 (φ the turn of the
@@ -417,7 +443,7 @@ impl<S: ParametricSurface + ?Sized> Walker<'_, S> {
             if turn > MAX_TURN {
                 return (out, LineEnd::Jump);
             }
-            if length >= self.opts.length {
+            if at_limit {
                 return (out, LineEnd::Length);
             }
             (y, k, h, last) = (a.y, a.slope, a.next, p);
