@@ -86,11 +86,13 @@ pub struct ShortestGeodesic {
     /// Its length: the integrated arc length when `exact`, else the polyline's.
     pub length: f64,
     /// Whether shooting converged: the curve is a geodesic ending at the target to within
-    /// 1e-9 of the domain's diagonal. Otherwise it is the relaxed polyline (a discrete geodesic).
+    /// 1e-9 of the smaller of the domain's diagonal and the ends' distance in the domain.
+    /// Otherwise it is the relaxed polyline (a discrete geodesic).
     pub exact: bool,
-    /// The length of the lattice path it started from.
+    /// The length of the lattice path it started from (for ends within two lattice cells,
+    /// the chord between them in space, which shooting starts from instead).
     pub lattice_length: f64,
-    /// The length of the relaxed polyline.
+    /// The length of the relaxed polyline (the chord for ends within two lattice cells).
     pub relaxed_length: f64,
 }
 
@@ -278,6 +280,20 @@ pub fn shortest_geodesic<S: ParametricSurface + ?Sized>(
             exact: true,
             lattice_length: 0.0,
             relaxed_length: 0.0,
+        });
+    }
+    // Points within two lattice cells: the lattice's path is a detour of up to a cell (for
+    // points 1e-10 apart on a sphere it was 3e-6 long), so aim straight at the target.
+    let chord = polyline_length(surface, &[a, b]);
+    if (b - a).norm() < 2.0 * domain_diameter(surface) / LATTICE as f64
+        && let Some(g) = shoot(surface, a, b, &[a, b], chord, opts)
+    {
+        return Ok(ShortestGeodesic {
+            length: g.length,
+            curve: g.curve,
+            exact: true,
+            lattice_length: chord,
+            relaxed_length: chord,
         });
     }
     let lattice = lattice_path(surface, a, b)?;
@@ -526,8 +542,19 @@ fn relax<S: ParametricSurface + ?Sized>(surface: &S, uvs: &[Point2<f64>]) -> Vec
     p
 }
 
-/// How near the target (relative to the domain's diagonal) a shot geodesic must end.
+/// How near the target a shot geodesic must end, relative to the domain's diagonal or to
+/// the distance of its ends in the domain, whichever is smaller (a tolerance of the diagonal
+/// alone let a geodesic 1e-8 long end 1.5 % short of its target).
 const SHOOTING_TOLERANCE: f64 = 1e-9;
+
+/// The distance within which shooting from `a` to `b` counts as reaching `b`:
+/// [`SHOOTING_TOLERANCE`] of the smaller of the domain's diagonal `scale` and |b − a|, but
+/// not below the rounding of an integrated end point (64 units in the last place of the
+/// coordinates: 11 were measured for a geodesic 1e-10 long).
+fn shooting_tolerance(a: Point2<f64>, b: Point2<f64>, scale: f64) -> f64 {
+    let rounding = 64.0 * f64::EPSILON * a.coords.amax().max(b.coords.amax());
+    (SHOOTING_TOLERANCE * scale.min((b - a).norm())).max(rounding)
+}
 
 /// Shooting from `a` towards `b`: Newton on (start angle, length) so that the geodesic ends
 /// at `b`, from the relaxed polyline's start direction and length.
@@ -542,7 +569,7 @@ fn shoot<S: ParametricSurface + ?Sized>(
     let first = *guide.get(1)?;
     let d = first - a;
     let (mut angle, mut length) = (d.y.atan2(d.x), guess);
-    let scale = domain_diameter(surface);
+    let tolerance = shooting_tolerance(a, b, domain_diameter(surface));
     let end = |angle: f64, length: f64| -> Option<(Point2<f64>, Geodesic)> {
         let g = geodesic(
             surface,
@@ -558,7 +585,7 @@ fn shoot<S: ParametricSurface + ?Sized>(
         let (here, g) = end(angle, length)?;
         let miss = here - b;
         // Steps across piece boundaries leave the end noisy at about 1e-10 of the domain.
-        if miss.norm() <= SHOOTING_TOLERANCE * scale {
+        if miss.norm() <= tolerance {
             return Some(g);
         }
         let (ha, hl) = (1e-6, 1e-6 * length);
