@@ -68,15 +68,18 @@ pub fn cut(text: &str) -> String {
 /// The longest message line, in characters (with its `error: ` prefix it stays within 300).
 pub const MAX_LINE: usize = 290;
 
-/// A message made readable whatever the input: every word (a run without spaces) longer than
-/// 60 characters, such as an echoed value, path or number, is cut to its first
-/// [`MAX_QUOTED`] characters with `…`, line breaks become spaces, and the whole is cut to
-/// [`MAX_LINE`] characters.
+/// A message made readable whatever the input: a number written out in more than 20
+/// digits (`1e59` as 60 digits, `1e-300` as 302 characters) is written short ([`Short`]),
+/// every other word (a run without spaces) longer than 60 characters, such as an echoed
+/// value or path, is cut to its first [`MAX_QUOTED`] characters with `…`, line breaks become
+/// spaces, and the whole is cut to [`MAX_LINE`] characters.
 pub fn cut_line(text: &str) -> String {
     let words: Vec<String> = text
         .split([' ', '\n', '\r'])
         .map(|w| {
-            if w.chars().count() > 60 {
+            if let Some(short) = long_number(w) {
+                short
+            } else if w.chars().count() > 60 {
                 cut(w)
             } else {
                 w.to_string()
@@ -88,6 +91,20 @@ pub fn cut_line(text: &str) -> String {
         Some((end, _)) => format!("{}…", &joined[..end]),
         None => joined,
     }
+}
+
+/// `word` in short form if it is a number written out in more than 20 characters (followed
+/// by punctuation or not): only such expansions, so that coordinates written in full to
+/// name a point (`0.30000000000000004`) keep their digits.
+fn long_number(word: &str) -> Option<String> {
+    let number = word.trim_end_matches([',', ';', ':', ')', ']', '.']);
+    let tail = &word[number.len()..];
+    let long = number.len() > 20
+        && number
+            .bytes()
+            .all(|b| b.is_ascii_digit() || b"+-.".contains(&b));
+    let x: f64 = number.parse().ok().filter(|_| long)?;
+    Some(format!("{}{tail}", Short(x)))
 }
 
 #[cfg(test)]
@@ -161,6 +178,23 @@ mod tests {
         assert!(m.starts_with("unknown variant `7777"), "{m}");
         assert!(m.chars().count() < 120, "{m}");
         assert!(cut_line(&"a ".repeat(1000)).chars().count() <= MAX_LINE + 1);
+    }
+
+    /// Numbers written out in full (Rust's `{}` of 1e59 or 1e-300) come out short; a
+    /// coordinate in full precision keeps its digits.
+    #[test]
+    fn numbers_written_out_in_full_are_made_short() {
+        let m = cut_line(&format!(
+            "the radius must be up to 1e12, not {}; tolerance {}, not met at ({}, 2)",
+            1e59,
+            1e-300,
+            0.1 + 0.2
+        ));
+        assert_eq!(
+            m,
+            "the radius must be up to 1e12, not 1e59; tolerance 1e-300, not met at (0.30000000000000004, 2)"
+        );
+        assert_eq!(cut_line(&format!("-{}.", 2e40)), "-2e40.");
     }
 
     #[test]
