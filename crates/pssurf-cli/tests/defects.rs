@@ -803,3 +803,29 @@ fn an_unreachable_edit_names_the_closest_value_over_every_attempt() {
     );
     assert!(!d.path().join("o.json").exists());
 }
+
+/// compare-subdivision left its pictures and the PS panel out of its estimate (16384² took
+/// 4.6 GB against a 1 GB budget).
+#[test]
+fn compare_subdivision_counts_its_pictures_in_the_estimate() {
+    let e = error_on_file(
+        "m.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nv 0.5 0.5 2\nf 1 2 5\nf 2 4 5\nf 4 3 5\nf 3 1 5\n",
+        &[
+            "--max-memory",
+            "1G",
+            "compare-subdivision",
+            "FILE",
+            "--times",
+            "1",
+            "--size",
+            "16384x16384",
+            "-o",
+            "out",
+        ],
+    );
+    assert!(
+        e.contains("at 16384x16384") && e.contains("would need about 4.1 GB"),
+        "{e}"
+    );
+}
