@@ -829,3 +829,16 @@ fn compare_subdivision_counts_its_pictures_in_the_estimate() {
         "{e}"
     );
 }
+
+/// probe --extent far below or above the surface's size made 200,000 points of rounding or
+/// one point: refused, naming the range.
+#[test]
+fn probe_extents_beyond_the_surface_scale_are_refused() {
+    let d = tempfile::tempdir().unwrap();
+    let u = small_ups(d.path());
+    for extent in ["1e-9", "1e12"] {
+        let e = one_error(&pssurf(&["probe", &u, "--at", "1,1", "--extent", extent]));
+        assert!(e.contains(&format!("--extent {extent} is outside")), "{e}");
+    }
+    ok(&["probe", &u, "--at", "1,1", "--extent", "0.5"]);
+}

@@ -9,7 +9,7 @@ use pssurf::interrogate::{
     Alignment, CoordinateCurve, CrossPlane, ProbeOptions, SurfaceCurve, probe,
 };
 use pssurf::surface::ParametricSurface;
-use pssurf::text::Significant;
+use pssurf::text::{Short, Significant};
 use serde_json::{Value, json};
 
 /// Cross-plane alignment (`--align`).
@@ -46,14 +46,36 @@ pub struct ProbeArgs {
     pub output: Option<PathBuf>,
 }
 
+/// The shortest `--extent`, relative to the surface's size.
+const MIN_EXTENT: f64 = 1e-6;
+
+/// The longest `--extent`, relative to the surface's size (a section cannot usefully be
+/// longer than a few times the surface).
+const MAX_EXTENT: f64 = 10.0;
+
 /// Runs `pssurf probe`.
 pub fn run(args: &ProbeArgs) -> Result<()> {
     let at = parse_uv(&args.at).with_context(|| format!("--at {}", args.at))?;
     let surface = crate::budget::load_surface(&args.surface)?;
+    let size = size(&surface);
     let extent = match args.extent {
-        Some(r) if r > 0.0 && r.is_finite() => r,
+        Some(r) if r > 0.0 && r.is_finite() => {
+            // A section 1e-9 of the size made 200,000 points (44 MB of JSON) of rounding; one
+            // of 1e12 left the domain in its first step (one point).
+            let (lo, hi) = (MIN_EXTENT * size, MAX_EXTENT * size);
+            if size > 0.0 && size.is_finite() && !(r >= lo && r <= hi) {
+                anyhow::bail!(
+                    "--extent {} is outside {} … {} ({MIN_EXTENT:e} to {MAX_EXTENT} times the surface's size {})",
+                    Short(r),
+                    Short(lo),
+                    Short(hi),
+                    Short(size)
+                );
+            }
+            r
+        }
         Some(_) => anyhow::bail!("--extent must be a positive finite number"),
-        None => 0.1 * size(&surface),
+        None => 0.1 * size,
     };
     let opts = ProbeOptions {
         alignment: match args.align {
