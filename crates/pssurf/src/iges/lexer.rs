@@ -19,14 +19,22 @@ pub(crate) struct Sections<'a> {
     pub global: Vec<Record<'a>>,
     pub directory: Vec<Record<'a>>,
     pub parameter: Vec<Record<'a>>,
+    /// Whether the file ends with its Terminate record (one cut short does not).
+    pub terminated: bool,
+    /// Where the Terminate record's counts differ from the records read (a warning: files
+    /// with a broken header are read all the same).
+    pub miscount: Option<String>,
 }
 
 /// Splits the file into sections by the letter in column 73. Blank lines are skipped; a line
-/// shorter than 73 columns, an unknown section letter, sections out of order or a compressed
-/// file are errors.
+/// shorter than 73 columns or with text beyond column 80, an unknown section letter,
+/// sections out of order, a compressed file and a second Terminate record are errors;
+/// whether the Terminate record is there, and counts in it that are not the sections', are
+/// noted for the caller.
 pub(crate) fn sections(text: &str) -> Result<Sections<'_>, IgesError> {
     let mut out = Sections::default();
     let mut order = 0;
+    let mut terminate: Option<Record<'_>> = None;
     for (k, raw) in text.lines().enumerate() {
         let line = k + 1;
         let raw = raw.trim_end_matches('\r');
@@ -43,6 +51,15 @@ pub(crate) fn sections(text: &str) -> Result<Sections<'_>, IgesError> {
             ));
         }
         let (body, rest) = raw.split_at(72);
+        if rest.chars().skip(8).any(|c| !c.is_whitespace()) {
+            return Err(IgesError::at(
+                line,
+                format!(
+                    "a record must have 80 columns (this one has {})",
+                    raw.trim_end().chars().count()
+                ),
+            ));
+        }
         let letter = rest.chars().next().unwrap_or(' ');
         let (rank, list) = match letter {
             'S' => (0, &mut out.start),
@@ -72,12 +89,43 @@ pub(crate) fn sections(text: &str) -> Result<Sections<'_>, IgesError> {
         order = rank;
         if letter != 'T' {
             list.push(Record { text: body, line });
+        } else if terminate.is_some() {
+            return Err(IgesError::at(line, "a second Terminate record"));
+        } else {
+            terminate = Some(Record { text: body, line });
         }
     }
     if out.directory.is_empty() {
         return Err(IgesError::at(0, "the file has no Directory Entry section"));
     }
+    out.terminated = terminate.is_some();
+    out.miscount = terminate.and_then(|t| miscount(&out, &t));
     Ok(out)
+}
+
+/// The Terminate record names how many records each section has (columns 2–8, 10–16, 18–24
+/// and 26–32 after the letters S, G, D, P): where it differs from the records read, what it
+/// says, naming its line.
+fn miscount(sections: &Sections<'_>, terminate: &Record<'_>) -> Option<String> {
+    let found = [
+        ('S', sections.start.len()),
+        ('G', sections.global.len()),
+        ('D', sections.directory.len()),
+        ('P', sections.parameter.len()),
+    ];
+    found.into_iter().enumerate().find_map(|(k, (letter, count))| {
+        let field = terminate.text.get(8 * k..8 * k + 8).unwrap_or("");
+        let said = field
+            .strip_prefix(letter)
+            .and_then(|n| n.trim().parse::<usize>().ok());
+        (said != Some(count)).then(|| {
+            format!(
+                "line {}: the Terminate record gives `{}` where the file has {count} `{letter}` records (edited by hand?)",
+                terminate.line,
+                field.trim()
+            )
+        })
+    })
 }
 
 /// A free-format field: empty (defaulted), a number, or a string.

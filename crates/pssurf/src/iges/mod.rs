@@ -122,6 +122,7 @@ pub fn read_iges(text: &str) -> Result<IgesModel, IgesError> {
         unit: ("mm".into(), 1.0),
         ..Default::default()
     };
+    model.warnings.extend(sections.miscount.clone());
     let text_at = |k: usize| match global.get(k).map(|f| &f.field) {
         Some(Field::Text(s)) => s.clone(),
         _ => String::new(),
@@ -146,6 +147,13 @@ pub fn read_iges(text: &str) -> Result<IgesModel, IgesError> {
         scale: model.unit.1,
     };
     file.import(&mut model)?;
+    // Checked last, so that a file cut inside its data is named by the line where it breaks.
+    if !sections.terminated {
+        return Err(IgesError::at(
+            0,
+            "the file ends without its Terminate record (truncated?)",
+        ));
+    }
     Ok(model)
 }
 

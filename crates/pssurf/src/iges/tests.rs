@@ -213,7 +213,14 @@ fn iges(global: &str, entities: &[(i64, &str, usize)]) -> String {
     for (k, (text, de)) in p_lines.iter().enumerate() {
         rec(&mut out, &format!("{text:<64}{de:>8}"), 'P', k + 1);
     }
-    out.push_str(&format!("{:<72}T{:>7}\n", "S      1", 1));
+    let counts = format!(
+        "S{:>7}G{:>7}D{:>7}P{:>7}",
+        1,
+        g.len(),
+        dirs.len(),
+        p_lines.len()
+    );
+    out.push_str(&format!("{counts:<72}T{:>7}\n", 1));
     out
 }
 
@@ -280,6 +287,27 @@ fn malformed_files_fail_with_the_line_and_never_panic() {
     // A transformation pointer to nothing.
     let e = error(&with(2, &|s| format!("{}{:>8}{}", &s[..48], 41, &s[56..])));
     assert!(e.message.contains("names no directory entry"), "{e}");
+    // Text beyond column 80 (the audit's records of 85 columns imported silently).
+    let e = error(&with(2, &|s| format!("{s}XXXXX")));
+    assert_eq!(e.line, 3, "{e}");
+    assert!(e.message.contains("80 columns (this one has 85)"), "{e}");
+    // No Terminate record: a truncated file (it imported silently).
+    let e = error(&lines[..lines.len() - 1].join("\n"));
+    assert!(e.message.contains("without its Terminate record"), "{e}");
+    // Terminate counts that are not the file's: read, with a warning naming the line.
+    let last = lines.len() - 1;
+    let miscounted = with(last, &|s| s.replacen("D      2", "D      9", 1));
+    assert_ne!(miscounted, good);
+    let model = read_iges(&miscounted).unwrap();
+    assert!(
+        model.warnings.iter().any(|w| w.starts_with(&format!(
+            "line {}: the Terminate record gives `D      9` where the file has 2 `D` records",
+            last + 1
+        ))),
+        "{:?}",
+        model.warnings
+    );
+    assert!(read_iges(&good).unwrap().warnings.is_empty());
     // Random damage anywhere: an error or a model, never a panic.
     let mut r = rng(1711);
     let bytes = good.as_bytes();
