@@ -45,20 +45,16 @@ fn error_on_file(name: &str, contents: &str, command: &[&str]) -> String {
 }
 
 fn small_ups(dir: &Path) -> String {
-    let p = dir.join("u.json");
+    ups_file(dir, "u.json", "4", "3", "x*y")
+}
+
+/// `pssurf new ups` into `dir/name`: its path.
+fn ups_file(dir: &Path, name: &str, sides: &str, size: &str, height: &str) -> String {
+    let p = s(&dir.join(name));
     ok(&[
-        "new",
-        "ups",
-        "--sides",
-        "4",
-        "--size",
-        "3",
-        "--height",
-        "x*y",
-        "-o",
-        &s(&p),
+        "new", "ups", "--sides", sides, "--size", size, "--height", height, "-o", &p,
     ]);
-    s(&p)
+    p
 }
 
 /// A small UPS file whose polygon holds 2.1e9 lattice points but whose control list has 16
@@ -774,19 +770,7 @@ fn hole_filling_beyond_the_memory_budget_is_refused_before_it_starts() {
 #[test]
 fn an_unreachable_edit_names_the_closest_value_over_every_attempt() {
     let d = tempfile::tempdir().unwrap();
-    let u = s(&d.path().join("u.json"));
-    ok(&[
-        "new",
-        "ups",
-        "--sides",
-        "6",
-        "--size",
-        "4",
-        "--height",
-        "sin(x)*cos(y)",
-        "-o",
-        &u,
-    ]);
+    let u = ups_file(d.path(), "u.json", "6", "4", "sin(x)*cos(y)");
     let o = s(&d.path().join("o.json"));
     let e = one_error(&pssurf(&[
         "edit", &u, "--at", "5,3", "--set", "K=1e6", "-o", &o,

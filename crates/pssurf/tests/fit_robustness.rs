@@ -757,7 +757,10 @@ fn a_wheel_of_points_is_fitted_with_bounded_neighbourhoods() {
     let mut r = ChaCha8Rng::seed_from_u64(91);
     let probes: Vec<Point2<f64>> = (0..500)
         .map(|_| {
-            let (a, t) = (r.random::<f64>().sqrt() * 0.99, r.random::<f64>() * 6.28);
+            let (a, t) = (
+                r.random::<f64>().sqrt() * 0.99,
+                r.random::<f64>() * std::f64::consts::TAU,
+            );
             Point2::new(a * t.cos(), a * t.sin())
         })
         .collect();
