@@ -121,10 +121,11 @@ impl<V: Vector> PsSpline<V> {
         }
     }
 
-    /// `f(evaluator, p)` for scattered points: they are visited cell by cell along the
-    /// Morton curve ([`cell_order`]), in parallel chunks, so that each walk from the
-    /// previous point is short and touches nearby memory; the results come back in the
-    /// caller's order. For coherent points (already ordered along a path)
+    /// `f(evaluator, p)` for scattered points: they are visited in Morton (Z-curve) order
+    /// ([`morton_order`]), in parallel chunks, so that each walk from the previous point is
+    /// short and touches nearby memory; the results come back in the caller's order. (A
+    /// coarser order, by cells of about four queries, sorts in 70 % of the time but doubled
+    /// the walks: inside a cell the queries come in random order.) For coherent points (already ordered along a path)
     /// [`PsSpline::map_points`] saves the sort.
     pub fn map_scattered<T: Send + Copy + Default>(
         &self,
