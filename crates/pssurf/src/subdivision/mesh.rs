@@ -220,19 +220,22 @@ impl Mesh {
             edge_of[keys[i].1 as usize] = e;
             if j - i == 2 {
                 let (h, g) = (keys[i].1, keys[i + 1].1);
+                let corners = |h: u32| {
+                    let mut c = self.triangles[h as usize / 3];
+                    c.sort_unstable();
+                    c
+                };
+                // The same corners either way round: two triangles glued back to back (the
+                // oppositely oriented pair passed, and one subdivision step then failed on
+                // an edge of four triangles between vertices the input does not have).
+                if corners(h) == corners(g) {
+                    let (a, b) = (h as usize / 3, g as usize / 3);
+                    return Err(MeshError::Repeated {
+                        first: a.min(b),
+                        second: a.max(b),
+                    });
+                }
                 if self.from_vertex(h) == self.from_vertex(g) {
-                    let corners = |h: u32| {
-                        let mut c = self.triangles[h as usize / 3];
-                        c.sort_unstable();
-                        c
-                    };
-                    if corners(h) == corners(g) {
-                        let (a, b) = (h as usize / 3, g as usize / 3);
-                        return Err(MeshError::Repeated {
-                            first: a.min(b),
-                            second: a.max(b),
-                        });
-                    }
                     return Err(MeshError::Orientation { edge: pair });
                 }
                 opposite[h as usize] = g;

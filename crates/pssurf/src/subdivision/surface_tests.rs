@@ -302,6 +302,19 @@ fn bad_meshes_are_refused_with_clear_errors() {
             second: 1
         })
     );
+    // ... and turned over: two triangles back to back (accepted before; a Loop step then
+    // failed naming vertices the input does not have).
+    let back_to_back = Mesh {
+        triangles: vec![[0, 1, 2], [0, 2, 1]],
+        ..twice.clone()
+    };
+    assert_eq!(
+        back_to_back.topology().err(),
+        Some(MeshError::Repeated {
+            first: 0,
+            second: 1
+        })
+    );
     // Two fans meeting at a vertex (a bow tie).
     let bow = Mesh {
         positions: [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]
