@@ -229,6 +229,14 @@ fn estimate(
 /// The most levels reported one line each; beyond, one line of totals.
 const REPORTED_LEVELS: usize = 20;
 
+/// ", N line ends left unjoined (the field is continuous there)" when N > 0.
+fn unjoined_ends(n: usize) -> String {
+    if n == 0 {
+        return String::new();
+    }
+    format!(", {n} line ends left unjoined where the field is continuous")
+}
+
 /// One line per level on standard error (curves, loops, points, gaps), or totals when there
 /// are many levels.
 fn report(traced: &[(String, ZeroSet)]) {
@@ -237,10 +245,12 @@ fn report(traced: &[(String, ZeroSet)]) {
         let curves: usize = traced.iter().map(|(_, s)| s.curves.len()).sum();
         let all: usize = traced.iter().map(|(_, s)| points(s)).sum();
         let gaps: usize = traced.iter().map(|(_, s)| s.gaps.len()).sum();
+        let unjoined: usize = traced.iter().map(|(_, s)| s.unjoined).sum();
         let cut = traced.iter().any(|(_, s)| s.truncated);
         eprintln!(
-            "{} levels: {curves} curves, {all} points, {gaps} gaps where the field jumps across pieces{}",
+            "{} levels: {curves} curves, {all} points, {gaps} gaps where the field jumps across pieces{}{}",
             traced.len(),
+            unjoined_ends(unjoined),
             if cut {
                 ", cut short by --max-points"
             } else {
@@ -258,11 +268,12 @@ fn report(traced: &[(String, ZeroSet)]) {
             format!(" (curves {}–{})", first, first + s.curves.len() - 1)
         };
         eprintln!(
-            "{name} = {}: {} curves{ids}, {closed} closed, {} points, {} gaps where the field jumps across pieces{}{}",
+            "{name} = {}: {} curves{ids}, {closed} closed, {} points, {} gaps where the field jumps across pieces{}{}{}",
             pssurf::text::Significant(s.level, 6),
             s.curves.len(),
             points(s),
             s.gaps.len(),
+            unjoined_ends(s.unjoined),
             if s.stuck > 0 {
                 format!(", {} branches stopped", s.stuck)
             } else {

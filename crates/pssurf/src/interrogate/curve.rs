@@ -27,6 +27,12 @@ impl SurfaceCurve {
     }
 }
 
+/// How far apart, in units of a level's corrector tolerance, the field's values on the two
+/// sides of a piece edge must be for an unpaired end there to count as a jump of the field
+/// ([`LevelGap`]) rather than an end left unjoined. A continuous field agrees across an edge
+/// to rounding (about 1e-5 of the tolerance); the curvature of a PS-spline jumps by far more.
+pub const CONTINUOUS: f64 = 100.0;
+
 /// An end of a level line on a piece boundary where the line does not continue at the same
 /// point on the other side (the field jumps there).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,8 +53,14 @@ pub struct ZeroSet {
     pub level: f64,
     /// The curves, joined across pieces.
     pub curves: Vec<SurfaceCurve>,
-    /// Ends on interior piece boundaries that do not continue (see [`LevelGap`]).
+    /// Ends on interior piece boundaries that do not continue because the field jumps there
+    /// (see [`LevelGap`]).
     pub gaps: Vec<LevelGap>,
+    /// Ends on interior piece boundaries left unpaired although the field is continuous
+    /// there (it agrees across the edge to within [`CONTINUOUS`] times `tolerance`): a line
+    /// the joining could not continue, such as one running along piece edges, or a walk
+    /// that stopped at a shallow angle.
+    pub unjoined: usize,
     /// The corrector's absolute tolerance: every point of the predictor–corrector has
     /// |f − c| ≤ this (on its piece).
     pub tolerance: f64,

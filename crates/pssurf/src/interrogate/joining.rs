@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use nalgebra::{Point2, Vector3};
 
 use super::continuation::ConvexPolygon;
-use super::curve::{LevelGap, SurfaceCurve, ZeroSet};
+use super::curve::{CONTINUOUS, LevelGap, SurfaceCurve, ZeroSet};
 
 /// The pieces' edges with welded corners: which pieces own each edge.
 pub(crate) struct Edges {
@@ -189,10 +189,17 @@ impl Pairing {
                 continue;
             }
             if let Some(other) = inside_neighbour(e, edges) {
+                let there = across(other, e.uv);
+                // The field's values on the two sides at the end's point: equal (a
+                // continuous field) means the line was left unjoined, not cut by a jump.
+                if (there - across(e.piece, e.uv)).abs() <= CONTINUOUS * set.tolerance {
+                    set.unjoined += 1;
+                    continue;
+                }
                 set.gaps.push(LevelGap {
                     uv: e.uv,
                     point: e.point,
-                    across: across(other, e.uv),
+                    across: there,
                 });
             }
         }

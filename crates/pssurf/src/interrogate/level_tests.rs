@@ -507,3 +507,50 @@ fn walks_close_level_loops_of_k_on_a_quadratic_graph() {
         }
     }
 }
+
+/// A level line running along piece edges (z = 0 of z = x + x²/5 on data gridded at x = 0):
+/// the field is continuous, so no end is reported as a jump of the field (49 were); the
+/// ends the joining leaves open are counted as unjoined instead.
+#[test]
+fn ends_where_the_field_is_continuous_are_not_reported_as_jumps() {
+    let pts: Vec<Point2<f64>> = (0..15)
+        .flat_map(|j| {
+            (0..15).map(move |i| Point2::new(-1.0 + i as f64 / 7.0, -1.0 + j as f64 / 7.0))
+        })
+        .collect();
+    let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
+    let s = Surface::Functional(
+        PsSpline::interpolate(basis, |p| Hermite {
+            value: p.x + 0.2 * p.x * p.x,
+            dx: 1.0 + 0.4 * p.x,
+            dy: 0.0,
+        })
+        .unwrap(),
+    );
+    let set = &level_lines(
+        &s,
+        &SurfaceField::Height,
+        &[0.0],
+        &ZeroSetOptions::default(),
+    )
+    .unwrap()[0];
+    assert!(set.gaps.is_empty(), "{:?}", set.gaps);
+    let domain = s.domain();
+    let inner_ends = set
+        .curves
+        .iter()
+        .filter(|c| !c.closed)
+        .flat_map(|c| [c.uvs[0], *c.uvs.last().unwrap()])
+        .filter(|&end| domain.distance_to_boundary(end) >= 1e-9)
+        .count();
+    assert!(
+        inner_ends <= set.unjoined,
+        "{inner_ends} open ends inside, {} unjoined",
+        set.unjoined
+    );
+    for c in &set.curves {
+        for uv in &c.uvs {
+            assert!(uv.x.abs() <= 1e-12, "{uv}");
+        }
+    }
+}
