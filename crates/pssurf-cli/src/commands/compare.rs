@@ -18,6 +18,8 @@ use pssurf::surface::Surface;
 use pssurf::triangulation::Triangulation;
 use pssurf_viz::{PlotOptions, Range, Show};
 
+use crate::commands::plot::{FRAME_BYTES_PER_PIXEL, SAMPLED_MESH_COST, png_bound};
+
 /// Arguments of `pssurf compare-subdivision`.
 #[derive(clap::Args, Debug)]
 pub struct CompareArgs {
@@ -115,17 +117,18 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         .max(3u64.checked_pow(sqrt3_times))
         .and_then(|f| f.checked_mul(t))
         .unwrap_or(u64::MAX);
-    // The PS panel samples every piece (six per triangle) at level 3, as a plot does (at most
-    // 100 bytes per vertex and 16 per triangle); the pictures are drawn one at a time (16
-    // bytes per pixel) and written as PNGs of at most 4 bytes per pixel each. Leaving these
-    // out let a 51k-triangle mesh take 2.1 GB against a 512 MB budget.
+    // The PS panel samples every piece (six per triangle) at level 3, as a plot does; the
+    // pictures are drawn one at a time and each written as a PNG. Leaving these out let a
+    // 51k-triangle mesh take 2.1 GB against a 512 MB budget.
     let ps_panel = pssurf::interrogate::sample_counts(
         pssurf::surface::PieceKind::Triangle,
         usize::try_from(t.saturating_mul(6)).unwrap_or(usize::MAX),
         3,
     )
     .map_or(u64::MAX, |c| {
-        crate::budget::mul(c.vertices, 100).saturating_add(crate::budget::mul(c.triangles, 16))
+        crate::budget::mul(c.vertices, SAMPLED_MESH_COST.memory_per_vertex).saturating_add(
+            crate::budget::mul(c.triangles, SAMPLED_MESH_COST.memory_per_triangle),
+        )
     });
     let pixels = crate::budget::mul(args.size.0 as u64, args.size.1 as u64);
     crate::budget::Estimate {
@@ -140,10 +143,11 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         memory: crate::budget::load_memory(0)
             .saturating_add(fin.saturating_mul(3 * 300))
             .saturating_add(ps_panel)
-            .saturating_add(crate::budget::mul(pixels, 16)),
+            .saturating_add(crate::budget::mul(pixels, FRAME_BYTES_PER_PIXEL)),
+        // Three subdivided panels and the PS one.
         output: fin
             .saturating_mul(3 * 60)
-            .saturating_add(crate::budget::mul(pixels, 4 * 4)),
+            .saturating_add(png_bound(pixels).saturating_mul(4)),
     }
     .check()?;
     crate::output::create_folder(&args.output)?;

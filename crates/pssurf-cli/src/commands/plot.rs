@@ -200,23 +200,33 @@ pub fn auto_level(surfaces: &[Surface], target: usize) -> u32 {
 /// 100 bytes per vertex and 16 per triangle; measured 89 and 12 at level 9) and the frame
 /// buffers (16 bytes per pixel; measured 14 at 8000 × 8000).
 pub fn estimate(surface: &Surface, level: u32, size: Size) -> Estimate {
-    const COST: SampleCost = SampleCost {
-        memory_per_vertex: 100,
-        memory_per_triangle: 16,
-        output_per_vertex: 0,
-        output_per_triangle: 0,
-    };
     let pixels = mul(size.0 as u64, size.1 as u64);
     let mut e = sample_estimate(
         surface,
         level,
         format!("a level-{level} plot at {}x{}", size.0, size.1),
-        COST,
-        mul(pixels, 16),
+        SAMPLED_MESH_COST,
+        mul(pixels, FRAME_BYTES_PER_PIXEL),
     );
-    // A PNG is never larger than its raw pixels.
-    e.output = mul(pixels, 4).saturating_add(1 << 16);
+    e.output = png_bound(pixels);
     e
+}
+
+/// Memory of a sampled mesh drawn in a plot: at most 100 bytes per vertex and 16 per
+/// triangle (measured 89 and 12 at level 9).
+pub const SAMPLED_MESH_COST: SampleCost = SampleCost {
+    memory_per_vertex: 100,
+    memory_per_triangle: 16,
+    output_per_vertex: 0,
+    output_per_triangle: 0,
+};
+
+/// Memory of a plot's frame buffers per pixel (measured 14 at 8000 × 8000).
+pub const FRAME_BYTES_PER_PIXEL: u64 = 16;
+
+/// The largest PNG of `pixels` pixels: never larger than its raw RGBA pixels, plus headers.
+pub fn png_bound(pixels: u64) -> u64 {
+    mul(pixels, 4).saturating_add(1 << 16)
 }
 
 /// The plot options of the arguments, for the surfaces drawn together.

@@ -33,8 +33,8 @@ pub struct ProbeArgs {
     /// How the two cross-planes are turned about the normal.
     #[arg(long, value_enum, default_value_t = AlignArg::Principal)]
     pub align: AlignArg,
-    /// How far the normal sections are traced each way (in space; default a tenth of the
-    /// surface's size).
+    /// How far the normal sections are traced each way (in space; 1e-6 … 10 times the
+    /// surface's size, default a tenth of it).
     #[arg(long, value_name = "R")]
     pub extent: Option<f64>,
     /// Write JSON (with the section polylines) instead of text.

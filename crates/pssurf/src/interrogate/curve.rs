@@ -31,7 +31,7 @@ impl SurfaceCurve {
 /// sides of a piece edge must be for an unpaired end there to count as a jump of the field
 /// ([`LevelGap`]) rather than an end left unjoined. A continuous field agrees across an edge
 /// to rounding (about 1e-5 of the tolerance); the curvature of a PS-spline jumps by far more.
-pub const CONTINUOUS: f64 = 100.0;
+pub const CONTINUITY_TOLERANCES: f64 = 100.0;
 
 /// An end of a level line on a piece boundary where the line does not continue at the same
 /// point on the other side (the field jumps there).
@@ -57,9 +57,9 @@ pub struct ZeroSet {
     /// (see [`LevelGap`]).
     pub gaps: Vec<LevelGap>,
     /// Ends on interior piece boundaries left unpaired although the field is continuous
-    /// there (it agrees across the edge to within [`CONTINUOUS`] times `tolerance`): a line
-    /// the joining could not continue, such as one running along piece edges, or a walk
-    /// that stopped at a shallow angle.
+    /// there (it agrees across the edge to within [`CONTINUITY_TOLERANCES`] times
+    /// `tolerance`): a line the joining could not continue, such as one running along piece
+    /// edges, or a walk that stopped at a shallow angle.
     pub unjoined: usize,
     /// The corrector's absolute tolerance: every point of the predictor–corrector has
     /// |f − c| ≤ this (on its piece).

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use nalgebra::{Point2, Vector3};
 
 use super::continuation::ConvexPolygon;
-use super::curve::{CONTINUOUS, LevelGap, SurfaceCurve, ZeroSet};
+use super::curve::{CONTINUITY_TOLERANCES, LevelGap, SurfaceCurve, ZeroSet};
 
 /// The pieces' edges with welded corners: which pieces own each edge.
 pub(crate) struct Edges {
@@ -192,7 +192,7 @@ impl Pairing {
                 let there = across(other, e.uv);
                 // The field's values on the two sides at the end's point: equal (a
                 // continuous field) means the line was left unjoined, not cut by a jump.
-                if (there - across(e.piece, e.uv)).abs() <= CONTINUOUS * set.tolerance {
+                if (there - across(e.piece, e.uv)).abs() <= CONTINUITY_TOLERANCES * set.tolerance {
                     set.unjoined += 1;
                     continue;
                 }

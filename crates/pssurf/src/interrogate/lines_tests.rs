@@ -444,27 +444,28 @@ fn evenly_spaced_lines_keep_their_distance_and_cover_the_domain() {
 /// to run on, up to a whole step past it (0.1 instead of 0.05 each way); now to 1e-6.
 #[test]
 fn a_length_limit_ends_each_branch_at_that_length() {
-    let s = elliptic_paraboloid(1.0, 1.0, 1520);
-    let seed = Point2::new(0.3, 0.4);
-    for (family, length) in [
-        (LineFamily::Curvature2, 0.05),
-        (LineFamily::Curvature1, 0.01),
-        (LineFamily::Curvature1, 0.3),
-    ] {
-        let opts = FieldLineOptions {
-            length,
-            ..Default::default()
-        };
-        let line = trace_field_line(&s, family, seed, &opts).unwrap();
-        assert_eq!(line.ends, [LineEnd::Length, LineEnd::Length]);
-        let branch =
-            |pts: &[Vector3<f64>]| -> f64 { pts.windows(2).map(|w| (w[1] - w[0]).norm()).sum() };
-        let pts = &line.curve.points;
-        for walked in [branch(&pts[..=line.seed]), branch(&pts[line.seed..])] {
-            assert!(
-                (walked - length).abs() <= 1e-6 * length,
-                "{family:?}: {walked} for {length}"
-            );
+    let mut r = rng(1520);
+    for seed in 0..3 {
+        let s = elliptic_paraboloid(1.0, uniform(&mut r, 0.5, 2.0), 1521 + seed);
+        let seed_point = Point2::new(uniform(&mut r, 0.2, 0.5), uniform(&mut r, 0.2, 0.5));
+        for family in [LineFamily::Curvature1, LineFamily::Curvature2] {
+            let length = uniform(&mut r, 0.005, 0.3);
+            let opts = FieldLineOptions {
+                length,
+                ..Default::default()
+            };
+            let line = trace_field_line(&s, family, seed_point, &opts).unwrap();
+            assert_eq!(line.ends, [LineEnd::Length, LineEnd::Length]);
+            let branch = |pts: &[Vector3<f64>]| -> f64 {
+                pts.windows(2).map(|w| (w[1] - w[0]).norm()).sum()
+            };
+            let pts = &line.curve.points;
+            for walked in [branch(&pts[..=line.seed]), branch(&pts[line.seed..])] {
+                assert!(
+                    (walked - length).abs() <= 1e-6 * length,
+                    "{family:?}: {walked} for {length}"
+                );
+            }
         }
     }
 }

@@ -60,6 +60,6 @@ pub use sample::{
 pub use section::{SectionCurve, SectionError, SectionOptions, plane_section};
 pub use umbilic::{Umbilic, Umbilics, find_umbilics, umbilic_near};
 pub use zero_set::{
-    CONTINUOUS, FieldOn, LevelGap, PieceFunction, PlaneDistance, SurfaceCurve, TraceMethod,
-    ZeroSet, ZeroSetError, ZeroSetOptions, trace_levels, trace_zero_set,
+    CONTINUITY_TOLERANCES, FieldOn, LevelGap, PieceFunction, PlaneDistance, SurfaceCurve,
+    TraceMethod, ZeroSet, ZeroSetError, ZeroSetOptions, trace_levels, trace_zero_set,
 };

@@ -28,7 +28,7 @@ use thiserror::Error;
 use super::continuation::{
     Branch, ConvexPolygon, End, Follow, Sample, correct, distance_to_segment, illinois,
 };
-pub use super::curve::{CONTINUOUS, LevelGap, SurfaceCurve, ZeroSet};
+pub use super::curve::{CONTINUITY_TOLERANCES, LevelGap, SurfaceCurve, ZeroSet};
 use super::field::SurfaceField;
 use super::joining::{BranchEnds, Edges, Pairing};
 use crate::bezier::Jet;
