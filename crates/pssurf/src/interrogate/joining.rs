@@ -66,9 +66,19 @@ impl Edges {
     }
 
     /// The welded corner ids of edge `e` of piece `piece`.
-    fn edge_of(&self, piece: usize, e: usize) -> (usize, usize) {
+    pub fn edge_of(&self, piece: usize, e: usize) -> (usize, usize) {
         let c = &self.corner_ids[piece];
         edge(c[e], c[(e + 1) % c.len()])
+    }
+
+    /// Every edge (its welded corner ids, smaller first) with the pieces that own it.
+    pub fn owned(&self) -> impl Iterator<Item = ((usize, usize), &[usize])> + '_ {
+        self.owners.iter().map(|(&e, o)| (e, o.as_slice()))
+    }
+
+    /// The welded ids of piece `piece`'s corners.
+    pub fn corners_of(&self, piece: usize) -> &[usize] {
+        &self.corner_ids[piece]
     }
 }
 

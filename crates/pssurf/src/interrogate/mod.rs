@@ -10,6 +10,7 @@ pub(crate) mod continuation;
 pub mod curvature;
 pub mod curve;
 pub mod curve_shape;
+mod edge_lines;
 pub mod even_lines;
 pub mod fairness;
 pub mod field;

@@ -29,6 +29,7 @@ use super::continuation::{
     Branch, ConvexPolygon, End, Follow, Sample, correct, distance_to_segment, illinois,
 };
 pub use super::curve::{CONTINUITY_TOLERANCES, LevelGap, SurfaceCurve, ZeroSet};
+use super::edge_lines::{EdgeLineIndex, level_edges};
 use super::field::SurfaceField;
 use super::joining::{BranchEnds, Edges, Pairing};
 use crate::bezier::Jet;
@@ -237,6 +238,7 @@ where
             opts,
             budget: &budget,
         };
+        level.replace_edge_branches(&mut branches, &edges);
         level.continue_unfinished(&mut branches, &edges, &mut set.stuck);
         let views = views(&branches);
         let pairing = Pairing::new(&views, &edges, opts.join_tolerance);
@@ -283,6 +285,54 @@ struct Level<'a, F> {
 }
 
 impl<F: PieceFunction> Level<'_, F> {
+    /// Replaces the branches traced along piece edges where the function takes the level
+    /// by one branch per edge ([`super::edge_lines`]).
+    fn replace_edge_branches(&self, branches: &mut Vec<(usize, PieceBranch)>, edges: &Edges) {
+        // The corners are points of the hunting mesh: a piece none of whose values there
+        // is on the level has no level edge. A flat piece (on the level everywhere) is
+        // counted as such, not outlined: between two of them there is no line.
+        let near = CONTINUITY_TOLERANCES * self.tol;
+        let searched: Vec<bool> = self
+            .pieces
+            .iter()
+            .map(|p| {
+                let flat = p.values.iter().all(|&v| v == self.c);
+                !flat && p.values.iter().any(|v| (v - self.c).abs() <= near)
+            })
+            .collect();
+        let polygons: Vec<&ConvexPolygon> = self.pieces.iter().map(|p| &p.polygon).collect();
+        let on_level = |pi: usize, uv: Point2<f64>| {
+            let p = &self.pieces[pi];
+            let v = self.function.eval(p.index, &p.frame, uv).0 - self.c;
+            v.abs() <= near
+        };
+        let spacing = |pi: usize| self.opts.step * self.pieces[pi].diameter;
+        let lines = level_edges(edges, &polygons, &searched, on_level, spacing);
+        if lines.is_empty() {
+            return;
+        }
+        let index = EdgeLineIndex::new(&lines, edges);
+        branches.retain(|(pi, b)| !index.covers(*pi, &b.uvs, self.opts.join_tolerance));
+        for line in &lines {
+            let p = &self.pieces[line.piece];
+            let points = line
+                .uvs
+                .iter()
+                .map(|&uv| self.function.eval(p.index, &p.frame, uv).1.value)
+                .collect();
+            branches.push((
+                line.piece,
+                PieceBranch {
+                    uvs: line.uvs.clone(),
+                    points,
+                    closed: false,
+                    start_edge: Some(line.edge),
+                    end_edge: Some(line.edge),
+                },
+            ));
+        }
+    }
+
     /// Where a branch ends on an edge inside the domain without a partner while the function
     /// on the neighbouring piece takes the level there, the curve goes on through a piece
     /// whose hunting mesh missed it (it enters and leaves by one edge): trace it from there,
