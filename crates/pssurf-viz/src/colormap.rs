@@ -260,8 +260,9 @@ impl ColorScale {
     pub fn position(&self, v: f64) -> f64 {
         match *self {
             ColorScale::Linear { lo, hi } => {
+                // Halved first: hi − lo overflows on ranges like −9e307 … 9e307.
                 if hi > lo {
-                    ((v - lo) / (hi - lo)).clamp(0.0, 1.0)
+                    ((v / 2.0 - lo / 2.0) / (hi / 2.0 - lo / 2.0)).clamp(0.0, 1.0)
                 } else {
                     0.5 + 0.0 * v
                 }
@@ -273,7 +274,7 @@ impl ColorScale {
     /// The value at position t ∈ (0, 1) (the inverse of [`ColorScale::position`], for legends).
     pub fn value_at(&self, t: f64) -> f64 {
         match *self {
-            ColorScale::Linear { lo, hi } => lo + t * (hi - lo),
+            ColorScale::Linear { lo, hi } => 2.0 * (lo / 2.0 + t * (hi / 2.0 - lo / 2.0)),
             ColorScale::Contrast { c } => {
                 let n = 2.0 * t - 1.0;
                 -n.signum() * (1.0 - n.abs()).ln() / c

@@ -48,20 +48,28 @@ pub fn format_tick(v: f64, step: f64) -> String {
     format!("{v:.decimals$}")
 }
 
+/// The most ticks a scale gets (a nice step of a fifth of the range gives 4 to 11; more only
+/// when the range is not a range of numbers, and then none are drawn).
+const MAX_TICKS: usize = 100;
+
 /// The tick values of a scale, with positions in [0, 1].
 pub fn ticks(scale: &ColorScale) -> Vec<(f64, f64)> {
     let (lo, hi) = match *scale {
         ColorScale::Linear { lo, hi } => (lo, hi),
         // The contrast curve reaches κ_norm = 0.9 at ln 10 / C: tick up to there.
+        // (Capped: a contrast below about 1e-307 would put it at infinity.)
         ColorScale::Contrast { c } => {
-            let m = std::f64::consts::LN_10 / c;
+            let m = (std::f64::consts::LN_10 / c).min(f64::MAX / 2.0);
             (-m, m)
         }
     };
-    let step = nice_step((hi - lo) / 5.0);
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
-    (first..=last)
+    // hi/5 − lo/5: a range wider than the largest float (−9e307 … 9e307) has a finite step.
+    let step = nice_step(hi / 5.0 - lo / 5.0);
+    let (first, last) = ((lo / step).ceil(), (hi / step).floor());
+    if !(first.is_finite() && last.is_finite() && last - first <= MAX_TICKS as f64) {
+        return Vec::new();
+    }
+    (first as i64..=last as i64)
         .map(|k| k as f64 * step)
         .map(|v| (v, scale.position(v)))
         .filter(|(_, t)| (0.0..=1.0).contains(t))
@@ -262,6 +270,33 @@ fn draw_ticks(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A range wider than the largest float (its width overflows) and a contrast whose tick
+    /// range is infinite asked for 2⁶⁴ ticks: plot and domain aborted allocating them.
+    #[test]
+    fn ranges_beyond_the_largest_float_get_a_few_ticks() {
+        for (lo, hi) in [(-9e307, 9e307), (-1.7e308, 1e308), (-f64::MAX, f64::MAX)] {
+            let t = ticks(&ColorScale::Linear { lo, hi });
+            assert!((3..=11).contains(&t.len()), "{lo} … {hi}: {t:?}");
+            assert!(
+                t.iter()
+                    .all(|(v, p)| v.is_finite() && (0.0..=1.0).contains(p))
+            );
+            // Positions spread over the bar, and back to their values.
+            assert!(t[0].1 < 0.25 && t[t.len() - 1].1 > 0.75, "{t:?}");
+            let scale = ColorScale::Linear { lo, hi };
+            for &(v, p) in &t {
+                assert!(
+                    (scale.value_at(p) - v).abs() <= 1e-12 * v.abs().max(hi),
+                    "{v} {p}"
+                );
+            }
+        }
+        for c in [1e-308, 5e-324] {
+            let t = ticks(&ColorScale::Contrast { c });
+            assert!(t.len() <= MAX_TICKS, "contrast {c}: {} ticks", t.len());
+        }
+    }
 
     #[test]
     fn nice_ticks() {
