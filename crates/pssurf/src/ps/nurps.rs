@@ -8,8 +8,9 @@ use super::basis::{PsBasis, SubLocation};
 use super::net::{NET_LEN, SUB_ORDINATES, Weighted};
 use super::spline::{PsJet, build_nets, rebuild_nets};
 use super::{PatchId, PsError};
-use crate::bezier::RationalBezierTriangle;
 use crate::bezier::rational::rational_quadratic_jet;
+use crate::bezier::{Jet, RationalBezierTriangle};
+use crate::triangulation::INSIDE_TOLERANCE;
 use crate::vector::Vector;
 
 /// A NURPS surface s(u) = Σ c_ij w_ij B_i^j(u) / Σ w_ij B_i^j(u) (3.32) with weights w_ij > 0.
@@ -168,10 +169,18 @@ impl<V: Vector> Nurps<V> {
         let idx = &SUB_ORDINATES[loc.sub];
         let q: [V; 6] = std::array::from_fn(|k| n[idx[k]].point);
         let qw: [f64; 6] = std::array::from_fn(|k| n[idx[k]].weight);
-        // Inside the domain the barycentric coordinates are (almost) non-negative and the
-        // weights positive, so the denominators are positive.
+        // With non-negative barycentric coordinates and positive weights the denominators
+        // are positive. Point location accepts coordinates down to −INSIDE_TOLERANCE, and
+        // −1e-17 times a weight of 1e30 outweighs a weight of 1e-30: then the point is taken
+        // on the piece (coordinates clamped, a move within the tolerance). Farther outside
+        // (a piece's polynomial extended, as level-line tracing does) where the rational
+        // patch has no positive denominator, the jet is NaN: undefined there.
         let jet = rational_quadratic_jet(&q, &qw, loc.bary, loc.dx, loc.dy, 2.0)
-            .expect("positive weights inside the domain");
+            .or_else(|e| match clamped(loc.bary) {
+                Some(b) => rational_quadratic_jet(&q, &qw, b, loc.dx, loc.dy, 2.0),
+                None => Err(e),
+            })
+            .unwrap_or_else(|_| Jet::zero().map(|v: V| v * f64::NAN));
         PsJet {
             jet,
             patch: PatchId::new(loc.triangle, loc.sub),
@@ -191,6 +200,17 @@ impl<V: Vector> Nurps<V> {
     pub fn eval(&self, p: Point2<f64>) -> Result<V, PsError> {
         Ok(self.jet(p)?.jet.value)
     }
+}
+
+/// The barycentric coordinates with their small negative entries (≥ −[`INSIDE_TOLERANCE`])
+/// set to zero, summing to one; `None` if one is more negative.
+fn clamped(b: [f64; 3]) -> Option<[f64; 3]> {
+    if b.iter().any(|&c| !(c >= -INSIDE_TOLERANCE)) {
+        return None;
+    }
+    let b = b.map(|c| c.max(0.0));
+    let sum: f64 = b.iter().sum();
+    Some(b.map(|c| c / sum))
 }
 
 fn weighted<V: Vector>(points: &[[V; 3]], weights: &[[f64; 3]]) -> Vec<[Weighted<V>; 3]> {

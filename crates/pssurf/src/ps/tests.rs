@@ -597,6 +597,51 @@ fn nurps_with_equal_weights_is_the_ps_surface_and_matches_the_homogeneous_form()
     }
 }
 
+/// Weights 1e30 and 1e-30 at two vertices in three (inside the documented range): on the edges of the
+/// pieces point location gives barycentric coordinates like −1e-17, and −1e-17 × 1e30
+/// outweighed 1e-30, so evaluation panicked ("positive weights inside the domain") on files
+/// that load as valid. Every point of the domain, on the pieces' edges too, now evaluates.
+#[test]
+fn nurps_with_extreme_weights_evaluates_everywhere_in_its_domain() {
+    let mut r = rng(49);
+    let mut on_edges = 0;
+    for (name, basis) in bases(13) {
+        let t = basis.triangulation();
+        let pts = random_vec3_triples(&mut r, t.vertex_count());
+        let weights: Vec<[f64; 3]> = (0..t.vertex_count())
+            .map(|i| match i % 3 {
+                0 => [1e30, 1e-30, 1e30],
+                1 => [1e-30, 1e30, 1e-30],
+                _ => [1.0; 3],
+            })
+            .collect();
+        let rat = Nurps::new(basis.clone(), pts, weights).unwrap();
+        let mut points = sample_points(t, &basis, &mut r, 3);
+        // Points on the rays Z P and the edges P P' of every triangle's pieces.
+        for s in 0..t.triangle_count() {
+            let ref_ = basis.refinement();
+            let p: Vec<Point2<f64>> = (0..3)
+                .flat_map(|c| [t.vertex(t.triangle(s)[c]), ref_.edge_point(t, s, c)])
+                .collect();
+            let z = ref_.z(s);
+            for k in 0..6 {
+                for (a, b) in [(z, p[k]), (p[k], p[(k + 1) % 6])] {
+                    points.push(a + (b - a) * uniform(&mut r, 0.0, 1.0));
+                    on_edges += 1;
+                }
+            }
+        }
+        for p in points {
+            let j = rat.jet(p).expect("inside the domain").jet;
+            let finite = [j.value, j.dx, j.dy]
+                .iter()
+                .all(|v| v.iter().all(|x| x.is_finite()));
+            assert!(finite, "{name} at {p:?}: {j:?}");
+        }
+    }
+    assert!(on_edges > 1000, "{on_edges} points on edges");
+}
+
 fn big(x: f64) -> BigRational {
     BigRational::from_float(x).unwrap()
 }
