@@ -449,6 +449,13 @@ fn ups_commands_reject_bad_input() {
     ok(&["fit", &example("saddle.csv"), "-o", &s(&general)]);
     let e = fails(&["subdivide", &s(&general), "--times", "1", "-o", &o]);
     assert!(e.contains("needs a uniform (UPS) surface"), "{e}");
+    assert!(
+        e.contains("holds a functional PS surface on a general triangulation"),
+        "{e}"
+    );
+    // A Bézier triangle is named as one (it was called a PS surface).
+    let e = fails(&["wavelet", &example("cubic-bezier.json"), "--levels", "1"]);
+    assert!(e.contains("this file holds a Bézier triangle"), "{e}");
     let e = fails(&["new", "ups", "--polygon", "0,0 3,1 0,3", "-o", &o]);
     assert!(e.contains("grid line"), "{e}");
     let e = fails(&[

@@ -12,10 +12,27 @@ pub fn require<'a>(surface: &'a Surface, path: &Path, command: &str) -> Result<&
     match surface.uniform() {
         Some(u) => Ok(u),
         None => bail!(
-            "{}: `pssurf {command}` needs a uniform (UPS) surface on a lattice polygon, and this file holds a PS surface on a general triangulation (create one with `pssurf new ups`)",
-            path.display()
+            "{}: `pssurf {command}` needs a uniform (UPS) surface on a lattice polygon, and this file holds {} (create one with `pssurf new ups`)",
+            path.display(),
+            held(surface)
         ),
     }
+}
+
+/// What a file holds, for the message above: "a NURBS surface", "a functional PS surface on a
+/// general triangulation", …
+fn held(surface: &Surface) -> String {
+    let kind = surface.kind();
+    let article = |s: &str| match s.chars().next() {
+        Some('a' | 'e' | 'i' | 'o' | 'u') => "an",
+        _ => "a",
+    };
+    let what = if surface.ps_basis().is_some() {
+        format!("{kind} surface on a general triangulation")
+    } else {
+        kind.to_string()
+    };
+    format!("{} {what}", article(&what))
 }
 
 /// What creating a UPS surface of `vertices` vertices on a block matrix of `slots` slots costs:
