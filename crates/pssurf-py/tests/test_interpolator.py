@@ -122,6 +122,15 @@ def test_shapes_follow_scipy(rng):
     ]
     for args, kw in cases:
         assert f(*args, **kw).shape == ct(*args, **kw).shape, args
+    # A tuple is the coordinate arrays, as in SciPy: f((x, y)) == f(x, y). With two points
+    # it was read as the points (x0, x1), (y0, y1), silently.
+    x, y = np.array([0.3, 0.6]), np.array([0.4, 0.5])
+    for xi in [(x, y), ((x, y),), (list(x), list(y)), (0.3, 0.4)]:
+        assert f(xi).shape == ct(xi).shape, xi
+        assert np.allclose(f(xi), ct(xi), rtol=0, atol=1e-2), xi
+    assert np.array_equal(f((x, y)), f(x, y))
+    assert np.array_equal(f.gradient((x, y)), f.gradient(x, y))
+    assert np.array_equal(f.hessian((x, y)), f.hessian(x, y))
     # grid=True: rows along x, columns along y, as SciPy's bivariate splines.
     x = np.linspace(0.3, 0.7, 7)
     y = np.linspace(0.35, 0.65, 5)

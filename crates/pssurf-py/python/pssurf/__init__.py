@@ -152,6 +152,12 @@ class PsInterpolator:
 
     def _xy(self, x, y):
         """Broadcast query coordinates: (flat x, flat y, result shape)."""
+        if y is None and isinstance(x, tuple) and len(x) == 1:
+            x = x[0]
+        if y is None and isinstance(x, tuple) and len(x) == 2:
+            # As SciPy's interpolators: a tuple is the coordinate arrays (x, y), broadcast
+            # together, not two points.
+            x, y = x
         if y is None:
             xi = _float_array(x, "xi")
             if xi.ndim == 1 and xi.size % 2 == 0:

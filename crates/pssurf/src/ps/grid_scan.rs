@@ -433,14 +433,19 @@ impl<V: Vector> PsSpline<V> {
         if grid.density_over(tri) < min_density {
             return None;
         }
-        // The lines each triangle's closure crosses.
+        // The lines each triangle's closure crosses; for a triangle on the domain's boundary
+        // also those that pass within point location's tolerance outside it.
         let lines: Vec<Range<u32>> = (0..tri.triangle_count())
             .into_par_iter()
             .map(|t| {
-                let v = tri.triangle(t).map(|i| tri.vertex(i).x);
-                let r = grid
-                    .xs
-                    .within(v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]));
+                let v = tri.triangle(t).map(|i| tri.vertex(i));
+                let (lo, hi) = (v[0].inf(&v[1]).inf(&v[2]), v[0].sup(&v[1]).sup(&v[2]));
+                let reach = if (0..3).any(|k| tri.neighbor(t, k).is_none()) {
+                    fringe_reach(lo, hi)
+                } else {
+                    0.0
+                };
+                let r = grid.xs.within(lo.x - reach, hi.x + reach);
                 r.start as u32..r.end as u32
             })
             .collect();
@@ -508,7 +513,11 @@ fn scan_line<V: Vector>(cell: &Cell<'_, V>, grid: &Grid<'_>, i: usize, row: &mut
         mask |= (beyond as u32) << k;
     }
     if mask == 0 || mask == 0b11_1111 {
-        return; // the line misses the triangle
+        // The line misses the triangle; on the boundary it may pass within the tolerance.
+        if cell.on_boundary {
+            fringe(cell, x, grid, row);
+        }
+        return;
     }
     let (k1, len) = (arc_start(mask), mask.count_ones() as usize);
     // The pieces in upward order, and the rays between them.
@@ -575,6 +584,50 @@ fn scan_line<V: Vector>(cell: &Cell<'_, V>, grid: &Grid<'_>, i: usize, row: &mut
     }
 }
 
+/// How far outside a boundary triangle with bounding box [lo, hi] point location may still
+/// take a point: barycentric coordinates ≥ −[`INSIDE_TOLERANCE`] reach that times a height
+/// outside an edge (at most the box's width plus height), with room for rounding.
+fn fringe_reach(lo: Point2<f64>, hi: Point2<f64>) -> f64 {
+    2.0 * INSIDE_TOLERANCE * ((hi.x - lo.x) + (hi.y - lo.y))
+}
+
+/// The points of a line that passes just outside a boundary triangle (x beyond its corners
+/// by less than [`fringe_reach`]) and that point location takes as inside it: filled from the
+/// boundary piece they are near, as [`extend`] does beyond a span.
+fn fringe<V: Vector>(cell: &Cell<'_, V>, x: f64, grid: &Grid<'_>, row: &mut [V]) {
+    let (lo, hi) = cell
+        .p
+        .iter()
+        .fold((cell.p[0], cell.p[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let reach = fringe_reach(lo, hi);
+    let ys = grid.ys.values;
+    for j in grid.ys.within(lo.y - reach, hi.y + reach) {
+        if let Some(piece) = near_boundary_piece(cell, x, ys[j]) {
+            row[j] = piece.value(x, ys[j]);
+        }
+    }
+}
+
+/// The boundary piece of `cell` whose polynomial point location would use at (x, y) just
+/// outside the triangle (see [`accepts_near_edge`]), if any.
+fn near_boundary_piece<'c, V: Vector>(
+    cell: &'c Cell<'_, V>,
+    x: f64,
+    y: f64,
+) -> Option<&'c Piece<V>> {
+    let p = Point2::new(x, y);
+    let basis = cell.spline.basis();
+    (0..6)
+        .filter(|&k| cell.boundary[k])
+        .find(|&k| {
+            cell.piece(k).is_some_and(|piece| {
+                let l = piece.bary(x, y);
+                l[0] >= -INSIDE_TOLERANCE && l[1] >= -INSIDE_TOLERANCE
+            }) && accepts_near_edge(basis, cell.t, k / 2, p)
+        })
+        .and_then(|k| cell.piece(k))
+}
+
 /// Points beyond the span of a triangle on the domain's boundary that point location would
 /// still take (within its tolerance of a boundary edge), each filled from a boundary piece
 /// it is near (so that the piece's polynomial is the one to extend there): from index `from`
@@ -590,16 +643,7 @@ fn extend<V: Vector>(
 ) {
     let mut j = if step < 0 { from.wrapping_sub(1) } else { from };
     while j < ys.len() {
-        let p = Point2::new(x, ys[j]);
-        let basis = cell.spline.basis();
-        let boundary = cell.boundary;
-        let near = (0..6).filter(|&k| boundary[k]).find(|&k| {
-            cell.piece(k).is_some_and(|piece| {
-                let l = piece.bary(x, ys[j]);
-                l[0] >= -INSIDE_TOLERANCE && l[1] >= -INSIDE_TOLERANCE
-            }) && accepts_near_edge(basis, cell.t, k / 2, p)
-        });
-        let Some(piece) = near.and_then(|k| cell.piece(k)) else {
+        let Some(piece) = near_boundary_piece(cell, x, ys[j]) else {
             return;
         };
         row[j] = piece.value(x, ys[j]);
@@ -713,6 +757,52 @@ mod tests {
             assert!(
                 inside > 2000 && outside > 1000,
                 "{inside} in, {outside} out"
+            );
+        }
+    }
+
+    /// Grid lines a few units in the last place (or 1e-17) beyond the domain's leftmost and
+    /// rightmost vertices: point location takes their points near the boundary as inside, and
+    /// the scan, which visited only the lines within a triangle's corners, left them NaN (the
+    /// Python package's `f(x, y, grid=True)` gave NaN where `f(X, Y)` gave values).
+    #[test]
+    fn lines_just_outside_the_domain_agree_with_pointwise_evaluation() {
+        for seed in 0..4 {
+            let mut r = rng(90 + seed);
+            // An 11 × 11 grid of data (vertical boundary edges) or random points (a hull with
+            // a leftmost and a rightmost vertex).
+            let pts: Vec<Point2<f64>> = if seed % 2 == 0 {
+                (0..121)
+                    .map(|k| Point2::new((k % 11) as f64 / 10.0, (k / 11) as f64 / 10.0))
+                    .collect()
+            } else {
+                (0..200)
+                    .map(|_| Point2::new(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)))
+                    .collect()
+            };
+            let tri = Triangulation::delaunay(pts).unwrap();
+            let (lo, hi) = tri.bounds();
+            let s = random_hermite_spline(tri, seed);
+            let mut xs = vec![lo.x - 1e-17, lo.x - 4e-16, lo.x, 0.5, hi.x, hi.x + 2e-16];
+            xs.extend([lo.x.next_down(), hi.x.next_up(), lo.x - 1e-9, hi.x + 1e-9]);
+            xs.sort_by(f64::total_cmp);
+            let ys: Vec<f64> = (0..400).map(|k| -0.01 + k as f64 / 390.0).collect();
+            let grid = s.scan_grid(&xs, &ys, f64::NAN, 0.0).expect("sorted axes");
+            let (inside, _) = assert_grid_agrees(&s, &xs, &ys, &grid, f64::NAN);
+            // The lines within rounding of the boundary have points inside.
+            let within = |i: usize| (xs[i] - lo.x).abs() < 1e-15 || (xs[i] - hi.x).abs() < 1e-15;
+            let near: usize = (0..xs.len())
+                .filter(|&i| within(i))
+                .map(|i| {
+                    grid[i * ys.len()..(i + 1) * ys.len()]
+                        .iter()
+                        .filter(|v| !v.is_nan())
+                        .count()
+                })
+                .sum();
+            assert!(
+                inside > 300 && (seed % 2 == 1 || near > 100),
+                "{inside} inside, {near} near"
             );
         }
     }
