@@ -162,38 +162,71 @@ pub fn evaluate_grid(
             Outside::Fill(f) => f,
             Outside::Error => f64::NAN,
         };
-        let values = spline.values_on_grid(x, y, fill);
+        let mut values = spline.values_on_grid(x, y, fill);
         if outside == Outside::Error {
-            check_inside(spline, x, y, &values)?;
+            check_inside(spline, x, y, &mut values)?;
         }
         return Ok(values);
     }
-    // Grid lines are coherent paths: evaluate in the grid's own order.
-    let points: Vec<Point2<f64>> = x
-        .iter()
-        .flat_map(|&a| y.iter().map(move |&b| Point2::new(a, b)))
-        .collect();
-    let values = spline.map_points(&points, |ev, p| derivative_at(ev, p, d));
-    finish(values, &points, outside)
+    // Grid lines are coherent paths: evaluate in the grid's own order, a chunk at a time so
+    // that the points and results in flight stay small next to the output.
+    let (n, ny) = (x.len() * y.len(), y.len());
+    let mut out = Vec::new();
+    out.try_reserve_exact(n)
+        .map_err(|_| format!("a {} × {ny} grid does not fit in memory", x.len()))?;
+    let mut points = Vec::with_capacity(GRID_CHUNK.min(n));
+    for start in (0..n).step_by(GRID_CHUNK) {
+        points.clear();
+        points.extend(
+            (start..(start + GRID_CHUNK).min(n)).map(|k| Point2::new(x[k / ny], y[k % ny])),
+        );
+        let values = spline.map_points(&points, |ev, p| derivative_at(ev, p, d));
+        for (p, v) in points.iter().zip(values) {
+            out.push(match (v, outside) {
+                (Some([v]), _) => v,
+                (None, Outside::Fill(f)) => f,
+                (None, Outside::Error) => return Err(outside_grid(*p)),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Grid points evaluated together on the derivative path (each takes 32 bytes while in
+/// flight: its point and its result).
+const GRID_CHUNK: usize = 1 << 16;
+
+/// Bytes per point that pointwise evaluation of `width` numbers per point holds at its peak:
+/// the points (16), their Morton order and sorted copy (24), the results with a flag (8 + 8 ×
+/// width) and the output (8 × width).
+pub fn pointwise_bytes(width: usize) -> u128 {
+    48 + 16 * width as u128
+}
+
+/// The error for a grid point outside.
+fn outside_grid(p: Point2<f64>) -> String {
+    format!(
+        "grid point ({}, {}) is outside the triangulation's convex hull",
+        p.x, p.y
+    )
 }
 
 /// With `extrapolate="error"`: fails at the first grid point outside (a NaN value is either
-/// outside or a NaN coordinate; both are located again to tell).
+/// outside or a NaN coordinate; both are located again to tell). A NaN at a point that
+/// location takes as inside is evaluated there: an answer, never a silent NaN.
 fn check_inside(
     spline: &PsSpline<f64>,
     x: &[f64],
     y: &[f64],
-    values: &[f64],
+    values: &mut [f64],
 ) -> Result<(), String> {
     let mut ev = spline.evaluator();
-    for (k, v) in values.iter().enumerate() {
+    for (k, v) in values.iter_mut().enumerate() {
         if v.is_nan() {
             let p = Point2::new(x[k / y.len()], y[k % y.len()]);
-            if ev.locate(p).is_none() {
-                return Err(format!(
-                    "grid point ({}, {}) is outside the triangulation's convex hull",
-                    p.x, p.y
-                ));
+            match ev.value(p) {
+                Some(value) => *v = value,
+                None => return Err(outside_grid(p)),
             }
         }
     }

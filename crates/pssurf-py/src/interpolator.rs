@@ -17,6 +17,7 @@ use crate::arrays::{float_rows, points_from, rows3, slice, triangles_from, vecto
 use crate::errors::{check_budget, value_error};
 use crate::evaluate::{
     Derivative, Outside, evaluate_grid, evaluate_points, graph_curvatures, jet_entries, jet_rows,
+    pointwise_bytes,
 };
 
 /// The interpolant of scattered data: a functional PS-spline z = s(x, y) on a triangulation
@@ -51,6 +52,10 @@ impl Interpolant {
         row: impl Fn(nalgebra::Point2<f64>, &pssurf::bezier::Jet<f64>) -> [f64; W] + Sync + Send,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let (x, y) = (slice(x, "x")?, slice(y, "y")?);
+        check_budget(
+            &format!("{W} numbers at each of {} points", x.len()),
+            x.len() as u128 * pointwise_bytes(W),
+        )?;
         let out = py
             .detach(|| jet_rows(&self.spline, x, y, Outside::from(fill), row))
             .map_err(value_error)?;
@@ -367,6 +372,10 @@ impl Interpolant {
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
         let d = Derivative::new(dx, dy)?;
+        check_budget(
+            &format!("values at {} points", x.len()),
+            x.len() as u128 * pointwise_bytes(1),
+        )?;
         let out = py
             .detach(|| evaluate_points(&self.spline, x, y, d, Outside::from(fill)))
             .map_err(value_error)?;

@@ -67,7 +67,8 @@ impl PySurface {
     }
 
     /// Writes the surface (atomically) to `path`; the format follows the extension.
-    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+    fn save(&self, py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<()> {
+        let path = path_argument(path)?;
         py.detach(|| pssurf::io::save(&self.surface, &path))
             .map_err(file_error)
     }
@@ -343,7 +344,8 @@ const STREAM_LIMIT: u64 = 256 << 20;
 /// `MemoryError` before reading; a pipe or device (an endless one such as /dev/zero) after
 /// 256 MiB, by `OSError`.
 #[pyfunction]
-pub fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<PySurface> {
+pub fn load(py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<PySurface> {
+    let path = path_argument(path)?;
     let limit = match std::fs::metadata(&path) {
         Ok(meta) if meta.is_file() => {
             check_budget(
@@ -413,4 +415,11 @@ pub fn ups(
     Ok(PySurface::new(
         Surface::try_from(surface.map_err(value_error)?).map_err(value_error)?,
     ))
+}
+
+/// A file path given as Python's `open` takes one: str, bytes or os.PathLike (through
+/// `os.fsdecode`; anything else is its TypeError).
+fn path_argument(path: &Bound<'_, PyAny>) -> PyResult<std::path::PathBuf> {
+    let os = path.py().import("os")?;
+    os.call_method1("fsdecode", (path,))?.extract()
 }

@@ -20,7 +20,9 @@ def test_save_and_load_round_trip(rng, tmp_path):
     # 3.3e-16 at most over 15 random sets of 30 to 3000 points with values in [-1, 1]).
     assert np.abs(s.evaluate(q)[:, 2] - f(q)).max() <= 2e-15
     u = pssurf.ups(6, 3, height="x*y", kind="parametric")
-    u.save(tmp_path / "u.json")
+    # Paths as open() takes them: str, bytes and os.PathLike (bytes were a TypeError).
+    u.save(bytes(tmp_path / "u.json"))
+    assert pssurf.load(str(tmp_path / "u.json")).kind == u.kind
     back = pssurf.load(tmp_path / "u.json")
     assert back.kind == u.kind
     (lo, hi) = u.bounds
