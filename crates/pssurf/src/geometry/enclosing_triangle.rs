@@ -177,13 +177,15 @@ fn min_enclosing_triangle_by_wedges(hull: &[Point2<f64>]) -> Option<Triangle2> {
                 wedges.push((lower, a as u16, b as u16));
             }
         }
-        // The most promising wedge first; then only wedges whose bound beats the best.
-        let mut best: Option<(f64, usize, usize, Third)> = None;
+        // The most promising wedge first; then only wedges whose bound beats the best (or
+        // ties with it). Every triangle within TIE of the best area is kept.
+        let mut found: Vec<(f64, usize, usize, Third)> = Vec::new();
+        let mut best = f64::INFINITY;
         let order = std::iter::once(first.1).chain((0..wedges.len()).filter(|&w| w != first.1));
         for w in order {
             let (lower, a, b) = wedges[w];
             let (a, b) = (a as usize, b as usize);
-            if best.is_some_and(|(area, ..)| lower >= area) {
+            if lower > best * (1.0 + TIE) {
                 continue;
             }
             let sin = cross(dirs[a], dirs[b]).abs();
@@ -192,14 +194,44 @@ fn min_enclosing_triangle_by_wedges(hull: &[Point2<f64>]) -> Option<Triangle2> {
                 .max_by(|&i, &j| (da[i] * db[i]).total_cmp(&(da[j] * db[j])))
                 .unwrap_or(0);
             if let Some((area, third)) = best_third_side(da, db, qs, lower, sin)
-                && best.is_none_or(|(b, ..)| area < b)
+                && area <= best * (1.0 + TIE)
             {
-                best = Some((area, a, b, third));
+                best = best.min(area);
+                found.push((area, a, b, third));
             }
         }
-        let (_, a, b, third) = best?;
-        Some(build_triangle(hull, dirs, a, b, third))
+        let tied = found
+            .iter()
+            .filter(|(area, ..)| *area <= best * (1.0 + TIE))
+            .map(|&(_, a, b, third)| build_triangle(hull, dirs, a, b, third));
+        first_of_ties(tied, hull)
     })
+}
+
+/// The direction (cos 1, sin 1): one radian is no rational multiple of π, so two corners
+/// whose directions from the centroid are (as on grids and symmetric shapes) never lie
+/// symmetrically about it.
+pub const FIRST_CORNER_DIRECTION: (f64, f64) = (0.5403023058681398, 0.8414709848078965);
+
+/// Areas within this relative difference are a tie: symmetric point sets (a vertex of a
+/// grid) have several minimal triangles, mirror images, and rounding picked one or the other
+/// as the coordinates were scaled.
+const TIE: f64 = 1e-9;
+
+/// Of minimal triangles tied in area, the one whose corners reach farthest along
+/// [`FIRST_CORNER_DIRECTION`] from the hull's centroid,
+/// relative to the hull's size: a choice that moves and scales with the points (mirror images
+/// differ in it unless symmetric about that direction, which grids and axis-aligned shapes
+/// are not).
+fn first_of_ties(tied: impl Iterator<Item = Triangle2>, hull: &[Point2<f64>]) -> Option<Triangle2> {
+    let c = hull.iter().fold(Vector2::zeros(), |s, p| s + p.coords) / hull.len() as f64;
+    let (dx, dy) = FIRST_CORNER_DIRECTION;
+    let reach = |t: &Triangle2| {
+        t.v.iter()
+            .map(|p| (p.x - c.x) * dx + (p.y - c.y) * dy)
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    tied.max_by(|s, t| reach(s).total_cmp(&reach(t)))
 }
 
 /// The best third side in the wedge of edges a and b (distances `da`, `db`): through the

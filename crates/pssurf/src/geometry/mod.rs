@@ -5,7 +5,7 @@ mod enclosing_linear;
 mod enclosing_triangle;
 pub mod hull;
 
-pub use enclosing_triangle::min_enclosing_triangle;
+pub use enclosing_triangle::{FIRST_CORNER_DIRECTION, min_enclosing_triangle};
 pub use hull::convex_hull;
 
 use nalgebra::{Point2, Vector2};

@@ -144,13 +144,33 @@ pub fn optimal_ps_triangle(i: usize, pts: &[Point2<f64>]) -> Result<Triangle2, P
         let larger = ENLARGEMENT_MARGINS.into_iter().filter(|&m| m > first);
         for margin in std::iter::once(first).chain(larger) {
             if let Ok(t) = check_ps_triangle(i, &t.enlarged(margin), pts, Containment::Exact) {
-                return Ok(t);
+                return Ok(canonical_corners(t));
             }
         }
     }
     circumscribing_triangle(pts)
         .and_then(|t| check_ps_triangle(i, &t, pts, Containment::Exact).ok())
+        .map(canonical_corners)
         .ok_or(PsError::DegeneratePsTriangle { vertex: i })
+}
+
+/// The counter-clockwise triangle `t` with its corners rotated to start at the one farthest
+/// along
+/// [`FIRST_CORNER_DIRECTION`](crate::geometry::FIRST_CORNER_DIRECTION) from its centroid. Control values refer to PS-triangle
+/// corners by position (`control[i][j]` to corner j), so a computed triangle must list its
+/// corners in an order that does not depend on how the search came to them (it followed the
+/// scale of the coordinates, and a file without PS-triangles meant another surface when its
+/// domain was only rescaled). The rule does not change under translation and scaling, and
+/// two corners tie only when they lie symmetrically about that direction, which grids and
+/// axis-aligned or symmetric shapes (where a lowest-left rule ties) do not.
+fn canonical_corners(t: Triangle2) -> Triangle2 {
+    let c = (t.v[0].coords + t.v[1].coords + t.v[2].coords) / 3.0;
+    let (dx, dy) = crate::geometry::FIRST_CORNER_DIRECTION;
+    let along = |k: usize| (t.v[k].x - c.x) * dx + (t.v[k].y - c.y) * dy;
+    let first = (0..3)
+        .max_by(|&a, &b| along(a).total_cmp(&along(b)))
+        .unwrap_or(0);
+    Triangle2::new(t.v[first], t.v[(first + 1) % 3], t.v[(first + 2) % 3])
 }
 
 /// The triangle of [`PsTriangleChoice::Circumscribed`] for vertex `i` with PS-points `pts`:
@@ -295,6 +315,81 @@ pub fn quality_for(ps_points: &[Point2<f64>], t: &Triangle2) -> PsTriangleQualit
 mod tests {
     use super::*;
     use crate::test_util::{rng, uniform};
+
+    /// The computed PS-triangles of a domain moved and scaled are the same triangles moved and
+    /// scaled, corner for corner (control values refer to corners by position). On the unit
+    /// square split in two, the corners of vertex 0's triangle came out rotated at scale 7
+    /// against scale 1, and the same control values gave z = 1.025 instead of 1.05 at the
+    /// centre. Grids (ties for a lowest-left rule) and random Delaunay sets, at scales from
+    /// 1e-38 to 1e30.
+    #[test]
+    fn computed_ps_triangles_list_their_corners_whatever_the_scale() {
+        let mut r = rng(51);
+        let grid: Vec<Point2<f64>> = (0..36)
+            .map(|k| Point2::new((k % 6) as f64, (k / 6) as f64))
+            .collect();
+        let square = vec![
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 0.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(0.0, 1.0),
+        ];
+        for (case, pts) in [("square", square), ("grid", grid)]
+            .into_iter()
+            .chain((0..4).map(|k| {
+                let pts = (0..30)
+                    .map(|_| Point2::new(uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)))
+                    .collect();
+                (["random 0", "random 1", "random 2", "random 3"][k], pts)
+            }))
+        {
+            // One triangulation, moved and scaled (Delaunay's choice between co-circular
+            // points on a grid may change with the scale).
+            let triangles: Vec<[usize; 3]> = Triangulation::delaunay(pts.clone())
+                .unwrap()
+                .triangles()
+                .iter()
+                .map(|t| t.map(|v| v as usize))
+                .collect();
+            let basis = |scale: f64, shift: f64| {
+                let moved: Vec<Point2<f64>> = pts
+                    .iter()
+                    .map(|p| Point2::new(p.x * scale + shift, p.y * scale - shift))
+                    .collect();
+                let tri = Triangulation::try_new(moved, triangles.clone()).unwrap();
+                crate::ps::PsBasis::optimal(tri).unwrap()
+            };
+            let reference = basis(1.0, 0.0);
+            for (scale, shift) in [
+                (3.0, 0.0),
+                (7.0, 0.0),
+                (0.1, 0.0),
+                (1e30, 0.0),
+                (1e-38, 0.0),
+                (1.0, 0.37),
+            ] {
+                let other = basis(scale, shift * scale);
+                for i in 0..pts.len() {
+                    let (a, b) = (reference.ps_triangle(i), other.ps_triangle(i));
+                    for k in 0..3 {
+                        let back = Point2::new(
+                            (b.v[k].x - shift * scale) / scale,
+                            (b.v[k].y + shift * scale) / scale,
+                        );
+                        assert!(
+                            (back - a.v[k]).norm() <= 1e-9 * a.diameter(),
+                            "{case}, scale {scale}, shift {shift}: vertex {i} corner {k}: {back} against {}; {:?} (area {}) against {:?} (area {})",
+                            a.v[k],
+                            b.v,
+                            b.area() / scale / scale,
+                            a.v,
+                            a.area()
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     /// Random point sets (a quarter squashed to nearly collinear, offsets up to 1e12 times
     /// the spread): the stored triangle contains every point exactly; every well-scaled set

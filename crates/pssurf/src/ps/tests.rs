@@ -933,7 +933,18 @@ fn shape_parameters_move_the_tangent_point_inside_the_control_triangle() {
             let target = b.map(|x| x / b.iter().sum::<f64>());
             s.set_shape_parameters(i, target).unwrap();
             let moved = ParametricSurface::jet(&s, at).unwrap().jet;
-            assert!((moved.value - combine(&s, target)).norm() < 1e-12, "{name}");
+            // V_i lies on an edge of its PS-triangle only up to the triangle's enlargement
+            // margin (α_j ≈ 2e-13 measured): a zero parameter there is out of reach by α_j
+            // times the control triangle's size (1.3e-12 measured on the l-shape).
+            let size = (0..3)
+                .map(|j| (s.points()[i][j] - s.points()[i][(j + 1) % 3]).norm())
+                .fold(0.0, f64::max);
+            let unreachable: f64 = (0..3)
+                .filter(|&j| on_edge[j])
+                .map(|j| basis.alpha(i)[j])
+                .sum();
+            let err = (moved.value - combine(&s, target)).norm();
+            assert!(err < 1e-12 + 4.0 * unreachable * size, "{name}: {err:e}");
             assert_near!(ws(&s), before_ws, 1e-12);
             for (k, got) in s.shape_parameters(i).iter().enumerate() {
                 assert_near!(*got, target[k], 1e-12);
