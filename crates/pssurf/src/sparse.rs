@@ -402,6 +402,21 @@ impl Block3Matrix {
             .sum()
     }
 
+    /// Σ |x_i|ᵀ |M_ij| |x_j|: the size of the terms of xᵀ M x, which bounds its rounding.
+    pub fn abs_quadratic_form(&self, x: &[[f64; 3]]) -> f64 {
+        let mut sum = 0.0;
+        for (i, j, b) in self.blocks() {
+            let mut term = 0.0;
+            for r in 0..3 {
+                for c in 0..3 {
+                    term += (x[i][r] * b[r][c] * x[j][c]).abs();
+                }
+            }
+            sum += if i == j { term } else { 2.0 * term };
+        }
+        sum
+    }
+
     /// The matrix's lower-triangle entries in scalar numbering (3i + r, 3j + c), for
     /// [`SpdPattern`].
     pub fn lower_entries(&self) -> (Vec<(usize, usize)>, Vec<f64>) {
