@@ -1,11 +1,11 @@
 //! `pssurf`: design and interrogate Powell–Sabin spline surfaces from the command line.
 
-/// `println!` that returns the write's error instead of panicking on it (standard output
-/// closed early, as in `pssurf info f.json | head -1`).
+/// `println!` that returns the write's error instead of panicking on it; a reader that has
+/// gone (`pssurf info f.json | head -1`) is no error ([`reader_gone_is_fine`]).
 macro_rules! outln {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        writeln!(std::io::stdout().lock(), $($arg)*)
+        $crate::reader_gone_is_fine(writeln!(std::io::stdout().lock(), $($arg)*))
     }};
 }
 
@@ -13,8 +13,18 @@ macro_rules! outln {
 macro_rules! out {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        write!(std::io::stdout().lock(), $($arg)*)
+        $crate::reader_gone_is_fine(write!(std::io::stdout().lock(), $($arg)*))
     }};
+}
+
+/// A report line's write, with a pipe whose reader has gone (`pssurf denoise … | head -1`)
+/// taken as written: the command goes on to write its files. It stopped there with exit 0,
+/// and the requested file was never written.
+fn reader_gone_is_fine(written: std::io::Result<()>) -> std::io::Result<()> {
+    match written {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other,
+    }
 }
 
 mod budget;

@@ -773,6 +773,71 @@ fn a_closed_standard_output_ends_quietly() {
     }
 }
 
+/// A report whose reader has gone (`pssurf denoise … -o clean.json | true`) does not stop
+/// the command before its files: denoise and wavelet exited 0 without writing them.
+#[test]
+fn a_closed_standard_output_does_not_stop_the_files() {
+    use std::process::{Command, Stdio};
+    let d = tmp();
+    let (ups, noisy) = (d.path().join("u.json"), d.path().join("n.json"));
+    ok(&[
+        "new",
+        "ups",
+        "--sides",
+        "6",
+        "--size",
+        "4",
+        "--height",
+        "sin(x)*cos(y)",
+        "-o",
+        &s(&ups),
+    ]);
+    ok(&["subdivide", &s(&ups), "--times", "2", "-o", &s(&noisy)]);
+    ok(&[
+        "noise",
+        &s(&noisy),
+        "--amplitude",
+        "0.02",
+        "--seed",
+        "1",
+        "-o",
+        &s(&noisy),
+    ]);
+    let (clean, coeffs) = (d.path().join("c.json"), d.path().join("w.json"));
+    for (args, written) in [
+        (
+            vec![
+                "denoise",
+                &s(&noisy),
+                "--levels",
+                "2",
+                "--auto",
+                "sure",
+                "-o",
+                &s(&clean),
+            ],
+            &clean,
+        ),
+        (
+            vec!["wavelet", &s(&noisy), "--levels", "2", "-o", &s(&coeffs)],
+            &coeffs,
+        ),
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_pssurf"))
+            .args(&args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take()); // the reader is gone before the report is printed
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {err}");
+        assert!(written.exists(), "{args:?} wrote nothing: {err}");
+    }
+    assert!(ok(&["info", &s(&clean)]).contains("valid"));
+}
+
 /// Runs pssurf, which must succeed, and returns what it printed on standard error.
 fn ok_stderr(args: &[&str]) -> String {
     let out = pssurf(args);
