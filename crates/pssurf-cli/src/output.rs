@@ -112,11 +112,25 @@ pub struct TableSink<'w> {
     column: usize,
     text: String,
     bytes: Vec<u8>,
+    /// The header, written with the first rows: a table that fails before its first rows
+    /// (a point outside in the first chunk) leaves nothing on standard output, where files
+    /// are discarded anyway.
+    pending: Vec<u8>,
 }
 
 impl TableSink<'_> {
+    /// Writes the header if it is still pending.
+    fn flush_pending(&mut self) -> Result<()> {
+        if !self.pending.is_empty() {
+            self.w.write_all(&self.pending)?;
+            self.pending.clear();
+        }
+        Ok(())
+    }
+
     /// Appends numbers row by row (`width` to a row; a chunk need not end a row).
     pub fn rows(&mut self, data: &[f64]) -> Result<()> {
+        self.flush_pending()?;
         match self.format {
             Format::Csv => {
                 use std::fmt::Write as _;
@@ -190,21 +204,20 @@ fn write_table(
 ) -> Result<()> {
     let format = Format::of(path);
     let run = |w: &mut dyn Write| -> Result<()> {
+        let mut pending = Vec::new();
         match format {
             Format::Csv => {
                 if let Some(columns) = header {
-                    writeln!(w, "{}", columns.join(","))?
+                    writeln!(pending, "{}", columns.join(","))?
                 }
             }
             Format::Npy => {
                 let shape = [rows as u64, width as u64];
-                let mut header = Vec::new();
                 npyz::WriteOptions::<f64>::new()
                     .default_dtype()
                     .shape(&shape)
-                    .writer(&mut header)
+                    .writer(&mut pending)
                     .write_header_only()?;
-                w.write_all(&header)?;
             }
         }
         let mut sink = TableSink {
@@ -214,6 +227,7 @@ fn write_table(
             column: 0,
             text: String::new(),
             bytes: Vec::new(),
+            pending,
         };
         produce(&mut sink).map_err(|e| {
             if e.chain()
@@ -223,7 +237,8 @@ fn write_table(
             } else {
                 producer_error(e)
             }
-        })
+        })?;
+        sink.flush_pending()
     };
     write_output(path.unwrap_or(Path::new("-")), Durability::Atomic, run)
 }

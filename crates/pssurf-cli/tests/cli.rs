@@ -838,6 +838,37 @@ fn a_closed_standard_output_does_not_stop_the_files() {
     assert!(ok(&["info", &s(&clean)]).contains("valid"));
 }
 
+/// A table that fails before its first rows (a point outside, the default `--outside
+/// error`) leaves nothing on standard output: its header was printed before the error.
+#[test]
+fn a_failed_table_prints_nothing() {
+    let d = tmp();
+    let surf = d.path().join("s.json");
+    ok(&[
+        "new",
+        "ups",
+        "--sides",
+        "6",
+        "--size",
+        "2",
+        "--height",
+        "x*y",
+        "-o",
+        &s(&surf),
+    ]);
+    let pts = write(d.path(), "p.csv", "u,v\n3,1.7\n30,1\n");
+    for command in ["curvature", "eval"] {
+        let out = pssurf(&[command, &s(&surf), "--at", &s(&pts)]);
+        assert!(!out.status.success(), "{command}");
+        assert!(
+            out.stdout.is_empty(),
+            "{command}: {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+        assert!(String::from_utf8_lossy(&out.stderr).contains("outside the domain"));
+    }
+}
+
 /// Runs pssurf, which must succeed, and returns what it printed on standard error.
 fn ok_stderr(args: &[&str]) -> String {
     let out = pssurf(args);
