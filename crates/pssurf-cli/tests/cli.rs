@@ -779,19 +779,8 @@ fn a_closed_standard_output_ends_quietly() {
 fn a_closed_standard_output_does_not_stop_the_files() {
     use std::process::{Command, Stdio};
     let d = tmp();
-    let (ups, noisy) = (d.path().join("u.json"), d.path().join("n.json"));
-    ok(&[
-        "new",
-        "ups",
-        "--sides",
-        "6",
-        "--size",
-        "4",
-        "--height",
-        "sin(x)*cos(y)",
-        "-o",
-        &s(&ups),
-    ]);
+    let ups = new_ups(d.path(), "u.json", 6, 4, "sin(x)*cos(y)");
+    let noisy = d.path().join("n.json");
     ok(&["subdivide", &s(&ups), "--times", "2", "-o", &s(&noisy)]);
     ok(&[
         "noise",
@@ -843,19 +832,7 @@ fn a_closed_standard_output_does_not_stop_the_files() {
 #[test]
 fn a_failed_table_prints_nothing() {
     let d = tmp();
-    let surf = d.path().join("s.json");
-    ok(&[
-        "new",
-        "ups",
-        "--sides",
-        "6",
-        "--size",
-        "2",
-        "--height",
-        "x*y",
-        "-o",
-        &s(&surf),
-    ]);
+    let surf = new_ups(d.path(), "s.json", 6, 2, "x*y");
     let pts = write(d.path(), "p.csv", "u,v\n3,1.7\n30,1\n");
     for command in ["curvature", "eval"] {
         let out = pssurf(&[command, &s(&surf), "--at", &s(&pts)]);

@@ -86,6 +86,25 @@ pub fn read_npy(path: &Path) -> (Vec<usize>, Vec<f64>) {
     (shape, data)
 }
 
+/// A UPS surface made by `pssurf new ups --sides … --size … --height …` as `dir/name`.
+pub fn new_ups(dir: &Path, name: &str, sides: u32, size: u32, height: &str) -> PathBuf {
+    let p = dir.join(name);
+    let (sides, size) = (sides.to_string(), size.to_string());
+    ok(&[
+        "new",
+        "ups",
+        "--sides",
+        &sides,
+        "--size",
+        &size,
+        "--height",
+        height,
+        "-o",
+        &s(&p),
+    ]);
+    p
+}
+
 pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();

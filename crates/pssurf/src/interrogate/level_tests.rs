@@ -508,17 +508,23 @@ fn walks_close_level_loops_of_k_on_a_quadratic_graph() {
     }
 }
 
-/// z = max(x, 0)² on data gridded at x = 0 is flat on the left half: the level z = 0 there is
-/// counted in flat pieces, and the only curve is the flat region's edge x = 0 (the pieces on
-/// the right take the level along it), not the edges between flat pieces.
-#[test]
-fn a_flat_region_is_counted_and_only_its_edge_is_a_line() {
+/// The PS basis on the Delaunay triangulation of a 15 × 15 grid of [-1, 1]² (with grid lines
+/// at x = 0 and y = 0).
+fn grid_basis() -> Arc<PsBasis> {
     let pts: Vec<Point2<f64>> = (0..15)
         .flat_map(|j| {
             (0..15).map(move |i| Point2::new(-1.0 + i as f64 / 7.0, -1.0 + j as f64 / 7.0))
         })
         .collect();
-    let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
+    Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap())
+}
+
+/// z = max(x, 0)² on data gridded at x = 0 is flat on the left half: the level z = 0 there is
+/// counted in flat pieces, and the only curve is the flat region's edge x = 0 (the pieces on
+/// the right take the level along it), not the edges between flat pieces.
+#[test]
+fn a_flat_region_is_counted_and_only_its_edge_is_a_line() {
+    let basis = grid_basis();
     let s = Surface::Functional(
         PsSpline::interpolate(basis, |p| {
             let x = p.x.max(0.0);
@@ -555,12 +561,7 @@ fn a_flat_region_is_counted_and_only_its_edge_is_a_line() {
 /// on it, as documented for [`TraceMethod::FourPoint`]).
 #[test]
 fn a_level_line_along_piece_edges_is_one_curve() {
-    let pts: Vec<Point2<f64>> = (0..15)
-        .flat_map(|j| {
-            (0..15).map(move |i| Point2::new(-1.0 + i as f64 / 7.0, -1.0 + j as f64 / 7.0))
-        })
-        .collect();
-    let basis = Arc::new(PsBasis::optimal(Triangulation::delaunay(pts).unwrap()).unwrap());
+    let basis = grid_basis();
     for (name, dir) in [("x", [1.0, 0.0]), ("x - y", [1.0, -1.0])] {
         let s = Surface::Functional(
             PsSpline::interpolate(basis.clone(), |p| {
