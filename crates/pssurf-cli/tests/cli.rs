@@ -746,12 +746,22 @@ fn outputs_never_replace_links_or_directories() {
     );
 }
 
+/// pssurf started with its standard output and error piped to this test.
+fn spawn_piped(args: &[&str]) -> std::process::Child {
+    use std::process::{Command, Stdio};
+    Command::new(env!("CARGO_BIN_EXE_pssurf"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
 /// A reader that stops early (`pssurf eval … | head -1`) is not an error: no panic, no
 /// message, success.
 #[test]
 fn a_closed_standard_output_ends_quietly() {
     use std::io::Read;
-    use std::process::{Command, Stdio};
     let d = tmp();
     let surf = d.path().join("f.json");
     ok(&["fit", &example("franke.csv"), "-o", &s(&surf)]);
@@ -759,12 +769,7 @@ fn a_closed_standard_output_ends_quietly() {
         vec!["eval", &s(&surf), "--grid", "700x700"],
         vec!["info", &s(&surf)],
     ] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_pssurf"))
-            .args(&args)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
+        let mut child = spawn_piped(&args);
         let mut first = [0u8; 1];
         child.stdout.take().unwrap().read_exact(&mut first).unwrap();
         let out = child.wait_with_output().unwrap();
@@ -777,7 +782,6 @@ fn a_closed_standard_output_ends_quietly() {
 /// the command before its files: denoise and wavelet exited 0 without writing them.
 #[test]
 fn a_closed_standard_output_does_not_stop_the_files() {
-    use std::process::{Command, Stdio};
     let d = tmp();
     let ups = new_ups(d.path(), "u.json", 6, 4, "sin(x)*cos(y)");
     let noisy = d.path().join("n.json");
@@ -812,12 +816,7 @@ fn a_closed_standard_output_does_not_stop_the_files() {
             &coeffs,
         ),
     ] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_pssurf"))
-            .args(&args)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
+        let mut child = spawn_piped(&args);
         drop(child.stdout.take()); // the reader is gone before the report is printed
         let out = child.wait_with_output().unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
