@@ -149,6 +149,7 @@ pub fn run(args: &FitArgs) -> Result<()> {
     let Columns { x, y, z, gradient } = Columns::find(&table, &args.data)?;
     let mut points: Vec<Point2<f64>> = table.rows.iter().map(|r| Point2::new(r[x], r[y])).collect();
     check_range(&points, &args.data)?;
+    check_values(table.rows.iter().map(|r| r[z]), &args.data)?;
     let mut rows: Vec<Vec<f64>> = table.rows.clone();
     let mut row_of: Vec<usize> = (0..points.len()).collect();
     if args.triangles.is_none() {
@@ -565,6 +566,22 @@ fn check_range(points: &[Point2<f64>], path: &Path) -> Result<()> {
         ),
         Err(e) => bail!("{}: {e}", path.display()),
     }
+}
+
+/// Every value within ±1e60, the control values' range ([`pssurf::limits::MAX_VALUE`]), or
+/// an error naming the first row beyond it. (A value of 1e308 was only found by the control
+/// values of the neighbour whose gradient it spoiled, and that row was named.)
+fn check_values(values: impl Iterator<Item = f64>, path: &Path) -> Result<()> {
+    for (k, v) in values.enumerate() {
+        if !pssurf::limits::value_ok(v) {
+            bail!(
+                "{}: row {}: z = {v:e} is beyond ±1e60, the range of values pssurf supports: scale z down",
+                path.display(),
+                k + 1
+            );
+        }
+    }
+    Ok(())
 }
 
 /// The error for a triangle of data rows (0-based) finer than the coordinates resolve.
