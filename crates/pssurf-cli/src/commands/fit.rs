@@ -373,6 +373,7 @@ fn approximate(args: &FitArgs, coarse: Coarse) -> Result<()> {
     let values: Vec<f64> = table.rows.iter().map(|r| r[z]).collect();
     // (Nearly coincident rows do no harm to a least-squares fit: no warning.)
     check_range(&points, &args.data)?;
+    check_values(values.iter().copied(), &args.data)?;
     let given = match coarse {
         Coarse::Given(path) => Some(Arc::new(user_coarse_basis(
             path,

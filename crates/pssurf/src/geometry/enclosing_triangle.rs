@@ -70,6 +70,8 @@ struct Scratch {
     dirs: Vec<Vector2<f64>>,
     dist: Vec<f64>,
     wedges: Vec<(f64, u16, u16)>,
+    /// The triangles found, (area, first flush edge, second, third side).
+    found: Vec<(f64, usize, usize, Third)>,
 }
 
 thread_local! {
@@ -147,7 +149,12 @@ fn min_enclosing_triangle_by_wedges(hull: &[Point2<f64>]) -> Option<Triangle2> {
     let n = hull.len();
     SCRATCH.with(|s| {
         let mut s = s.borrow_mut();
-        let Scratch { dirs, dist, wedges } = &mut *s;
+        let Scratch {
+            dirs,
+            dist,
+            wedges,
+            found,
+        } = &mut *s;
         // Unit edge directions; P lies to the left of each (inward normal (−d.y, d.x)).
         dirs.clear();
         dirs.extend((0..n).map(|i| (hull[(i + 1) % n] - hull[i]).normalize()));
@@ -179,7 +186,7 @@ fn min_enclosing_triangle_by_wedges(hull: &[Point2<f64>]) -> Option<Triangle2> {
         }
         // The most promising wedge first; then only wedges whose bound beats the best (or
         // ties with it). Every triangle within TIE of the best area is kept.
-        let mut found: Vec<(f64, usize, usize, Third)> = Vec::new();
+        found.clear();
         let mut best = f64::INFINITY;
         let order = std::iter::once(first.1).chain((0..wedges.len()).filter(|&w| w != first.1));
         for w in order {

@@ -57,7 +57,9 @@ pub(crate) fn level_edges(
                 .iter()
                 .all(|&t| on_level(piece, a + (b - a) * t))
             {
-                let steps = ((b - a).norm() / spacing(piece)).ceil().clamp(1.0, 1e4) as usize;
+                // (At least one step: a NaN ratio from a zero spacing becomes 0 as usize.)
+                let steps = ((b - a).norm() / spacing(piece)).ceil().min(1e4) as usize;
+                let steps = steps.max(1);
                 let uvs = (0..=steps)
                     .map(|k| a + (b - a) * (k as f64 / steps as f64))
                     .collect();

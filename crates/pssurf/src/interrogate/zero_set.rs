@@ -314,6 +314,16 @@ impl<F: PieceFunction> Level<'_, F> {
         let index = EdgeLineIndex::new(&lines, edges);
         branches.retain(|(pi, b)| !index.covers(*pi, &b.uvs, self.opts.join_tolerance));
         for line in &lines {
+            // The points count against the budget as traced ones do; none are left: stop.
+            let taken = self
+                .budget
+                .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |b| {
+                    b.checked_sub(line.uvs.len())
+                });
+            if taken.is_err() {
+                self.budget.store(0, Ordering::Relaxed);
+                return;
+            }
             let p = &self.pieces[line.piece];
             let points = line
                 .uvs
