@@ -82,7 +82,7 @@ impl Interpolant {
 fn bytes_per_point(method: GradientMethod) -> u128 {
     match method {
         GradientMethod::Local => 3 * 1024,
-        GradientMethod::Global => 9 * 1024,
+        GradientMethod::Global | GradientMethod::Jumps => 9 * 1024,
     }
 }
 
@@ -91,8 +91,9 @@ fn gradient_method(name: &str) -> PyResult<GradientMethod> {
     match name {
         "local" => Ok(GradientMethod::Local),
         "global" => Ok(GradientMethod::Global),
+        "jumps" => Ok(GradientMethod::Jumps),
         _ => Err(value_error(format!(
-            "gradient_method must be \"local\" or \"global\", not {name:?}"
+            "gradient_method must be \"local\", \"global\" or \"jumps\", not {name:?}"
         ))),
     }
 }
@@ -117,12 +118,13 @@ struct Data {
 }
 
 /// The PS-triangles an interpolant is built on: circumscribed ones when its gradients are
-/// given or estimated locally (see the `deferred` field of [`Interpolant`]), the optimal
-/// ones for the global estimate. That estimate's system is assembled on the PS-triangles,
-/// so its rounding depends on them; on the optimal ones it is the CLI's to the last bit.
+/// given or estimated locally or globally (see the `deferred` field of [`Interpolant`]),
+/// the optimal ones for the least-jump estimate. That estimate's system is assembled on the
+/// PS-triangles, so its rounding depends on them; on the optimal ones it is the CLI's to
+/// the last bit. (The global estimate does not read the PS-triangles.)
 fn ps_triangles_for(method: GradientMethod, gradients_given: bool) -> PsTriangleChoice {
     match method {
-        GradientMethod::Global if !gradients_given => PsTriangleChoice::Optimal,
+        GradientMethod::Jumps if !gradients_given => PsTriangleChoice::Optimal,
         _ => PsTriangleChoice::Circumscribed,
     }
 }

@@ -39,11 +39,12 @@ def inradius_at(pts, triangles, q):
     [
         {},
         {"gradient_method": "global"},
+        {"gradient_method": "jumps"},
         {"split": "centroid"},
         {"gradients": "exact"},
         {"triangles": "given"},
     ],
-    ids=["local", "global", "centroid", "given-gradients", "given-triangles"],
+    ids=["local", "global", "jumps", "centroid", "given-gradients", "given-triangles"],
 )
 def test_quadratics_are_reproduced(rng, kwargs):
     n = 400
@@ -169,7 +170,7 @@ def test_agrees_with_the_cli(rng, cli, tmp_path):
     q = inner_points(rng, 300)
     at = tmp_path / "at.csv"
     np.savetxt(at, q, delimiter=",", header="u,v", comments="", fmt="%.17g")
-    for method in ("local", "global"):
+    for method in ("local", "global", "jumps"):
         surf = tmp_path / f"{method}.json"
         out = tmp_path / f"{method}.csv"
         subprocess.run([cli, "fit", str(data), "-o", str(surf), "--gradients", method],

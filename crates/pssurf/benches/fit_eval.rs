@@ -9,8 +9,8 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use pssurf::prelude::*;
 use pssurf::ps::Energy;
 use pssurf::scattered::{
-    GradientMethod, Smoothing, estimate_gradients, estimate_gradients_global, interpolate,
-    interpolate_with, smooth_scattered,
+    GradientMethod, Smoothing, estimate_gradients, estimate_gradients_global,
+    estimate_gradients_jumps, interpolate, interpolate_with, smooth_scattered,
 };
 use std::hint::black_box;
 
@@ -75,6 +75,9 @@ fn fitting(c: &mut Criterion) {
         });
         g.bench_function(format!("global gradients/{n}"), |b| {
             b.iter(|| black_box(estimate_gradients_global(&basis, &zv).unwrap()))
+        });
+        g.bench_function(format!("least-jump gradients/{n}"), |b| {
+            b.iter(|| black_box(estimate_gradients_jumps(&basis, &zv).unwrap()))
         });
         let m = n / 20;
         g.bench_function(format!("smoothing fit, fixed λ, {m} vertices/{n}"), |b| {

@@ -1,6 +1,6 @@
 //! Times `interpolate` (the scattered-data fit) on N random points, repeated R times, for
-//! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200 [--global]
-//! [--circumscribed]` (the last: PS-triangles for evaluation, as the Python interpolant).
+//! profiling: `cargo run --release -p pssurf --example profile_fit -- 10000 200
+//! [--global | --jumps] [--circumscribed]` (the last: PS-triangles for evaluation, as the Python interpolant).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -23,6 +23,8 @@ fn main() {
     let [n, repeats] = common::count_args([10_000, 50]);
     let method = if std::env::args().any(|a| a == "--global") {
         GradientMethod::Global
+    } else if std::env::args().any(|a| a == "--jumps") {
+        GradientMethod::Jumps
     } else {
         GradientMethod::Local
     };

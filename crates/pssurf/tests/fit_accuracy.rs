@@ -9,7 +9,11 @@ use rand_chacha::ChaCha8Rng;
 #[path = "../benches/common.rs"]
 mod common;
 
-const METHODS: [GradientMethod; 2] = [GradientMethod::Local, GradientMethod::Global];
+const METHODS: [GradientMethod; 3] = [
+    GradientMethod::Local,
+    GradientMethod::Global,
+    GradientMethod::Jumps,
+];
 
 fn franke(x: f64, y: f64) -> f64 {
     common::franke(Point2::new(x, y)).value
@@ -113,7 +117,7 @@ fn every_gradient_method_reproduces_quadratics() {
 
 /// Few points: 3 to 8 random ones, linear data (and quadratics from 6 points on, where the
 /// local fit is exact). The energy leaves gradients free there (one triangle: a quadratic
-/// through three values), and the global solve multiplied rounding by the inverse of its
+/// through three values), and the least-jump solve multiplied rounding by the inverse of its
 /// small anchor: linear data on 3 points 2.7e-9 off, quadratics on 6 points 1.5e-10. Now the
 /// local estimate is kept when it has no more energy than the solution.
 #[test]
@@ -131,27 +135,29 @@ fn every_gradient_method_reproduces_linear_data_on_few_points() {
                 c[0] + c[1] * x + c[2] * y + degree2 * (c[3] * x * x + c[4] * x * y + c[5] * y * y)
             };
             let z: Vec<f64> = pts.iter().map(|p| f(p.x, p.y)).collect();
-            // Nearly collinear draws are refused or merged: not this test's subject.
-            let Ok(fit) = interpolate(&pts, &z, GradientMethod::Global) else {
-                continue;
-            };
-            tried += 1;
-            for k in 0..200 {
-                let b: [f64; 3] = std::array::from_fn(|_| r.random_range(0.0..1.0));
-                let sum: f64 = b.iter().sum();
-                let p = Point2::from(
-                    (pts[k % n].coords * b[0]
-                        + pts[(k + 1) % n].coords * b[1]
-                        + pts[(k + 2) % n].coords * b[2])
-                        / sum,
-                );
-                let Ok(v) = fit.spline.eval(p) else { continue };
-                let err = (v - f(p.x, p.y)).abs();
-                assert!(err < 1e-12, "{n} points: {err:e} at {p}");
+            for method in METHODS {
+                // Nearly collinear draws are refused or merged: not this test's subject.
+                let Ok(fit) = interpolate(&pts, &z, method) else {
+                    continue;
+                };
+                tried += 1;
+                for k in 0..200 {
+                    let b: [f64; 3] = std::array::from_fn(|_| r.random_range(0.0..1.0));
+                    let sum: f64 = b.iter().sum();
+                    let p = Point2::from(
+                        (pts[k % n].coords * b[0]
+                            + pts[(k + 1) % n].coords * b[1]
+                            + pts[(k + 2) % n].coords * b[2])
+                            / sum,
+                    );
+                    let Ok(v) = fit.spline.eval(p) else { continue };
+                    let err = (v - f(p.x, p.y)).abs();
+                    assert!(err < 1e-12, "{n} points, {method:?}: {err:e} at {p}");
+                }
             }
         }
     }
-    assert!(tried >= 100, "{tried} sets fitted");
+    assert!(tried >= 300, "{tried} fits");
 }
 
 /// 100 random points and 100 more within a square of side 1e-8 … 1e-5: the data there fix

@@ -12,7 +12,11 @@ use pssurf::triangulation::TriangulationError;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-const METHODS: [GradientMethod; 2] = [GradientMethod::Local, GradientMethod::Global];
+const METHODS: [GradientMethod; 3] = [
+    GradientMethod::Local,
+    GradientMethod::Global,
+    GradientMethod::Jumps,
+];
 
 /// The interpolant as `pssurf fit` makes it (Delaunay triangulation, incentre split,
 /// optimal PS-triangles) with gradients estimated by `method`.

@@ -37,9 +37,7 @@ fn smoothing_beats_the_noise_and_the_interpolant_and_gcv_picks_a_good_lambda() {
     for energy in [Energy::HessianJumps, Energy::ThinPlate] {
         let fit = smooth_scattered(&pts, &z, 300, energy, Smoothing::Gcv, &mut |_| {}).unwrap();
         let err = rms_to_truth(|p| fit.spline.eval(p).unwrap());
-        let interp = interpolate(&pts, &z, GradientMethod::Global)
-            .unwrap()
-            .spline;
+        let interp = interpolate(&pts, &z, GradientMethod::Jumps).unwrap().spline;
         let err_interp = rms_to_truth(|p| interp.eval(p).unwrap());
         // The error-optimal λ over a fine scan.
         let mut scan: Vec<(f64, f64)> = (-40..=16)
@@ -90,9 +88,7 @@ fn with_lambda_to_zero_on_every_point_the_fit_is_the_interpolant() {
     ];
     for (name, pts) in sets {
         let z: Vec<f64> = pts.iter().map(|&p| f(p)).collect();
-        let interp = interpolate(&pts, &z, GradientMethod::Global)
-            .unwrap()
-            .spline;
+        let interp = interpolate(&pts, &z, GradientMethod::Jumps).unwrap().spline;
         let mut previous = (f64::INFINITY, f64::INFINITY);
         for lambda in [1e-8, 1e-10, 1e-12, 1e-14] {
             let fit = smooth_scattered(

@@ -39,9 +39,13 @@ impl From<Split> for SplitRule {
 pub enum Gradients {
     /// Local weighted quadratic least squares at each vertex (fastest).
     Local,
-    /// Least Hessian-jump energy over the whole triangulation (one sparse solve): more
-    /// accurate on smooth data, less on rough real data.
+    /// Least curvature of the edge network beyond the locally fitted one, over the whole
+    /// triangulation (one well-conditioned sparse solve): more accurate on smooth data.
     Global,
+    /// Least Hessian-jump energy over the whole triangulation (the least-energy interpolant;
+    /// one sparse factorisation): the most accurate on smooth gridded data, the least on
+    /// rough real data, and the slowest.
+    Jumps,
 }
 
 impl From<Gradients> for GradientMethod {
@@ -49,6 +53,7 @@ impl From<Gradients> for GradientMethod {
         match g {
             Gradients::Local => GradientMethod::Local,
             Gradients::Global => GradientMethod::Global,
+            Gradients::Jumps => GradientMethod::Jumps,
         }
     }
 }
@@ -224,7 +229,8 @@ pub fn run(args: &FitArgs) -> Result<()> {
                 .map_err(|e| fit_error(&args.data, e.map_points(|v| row_of[v])))?;
             let mut m = match args.gradients {
                 Gradients::Local => "estimated by local weighted quadratic least squares",
-                Gradients::Global => "estimated by least Hessian-jump energy (global)",
+                Gradients::Global => "estimated by least network curvature (global)",
+                Gradients::Jumps => "estimated by least Hessian-jump energy (jumps)",
             }
             .to_string();
             match report.stronger_anchor {
@@ -328,7 +334,7 @@ fn fit_estimate(rows: usize, gradients: Gradients, smoothing: Option<usize>) -> 
                 rows,
                 match gradients {
                     Gradients::Local => 3 * 1024,
-                    Gradients::Global => 9 * 1024,
+                    Gradients::Global | Gradients::Jumps => 9 * 1024,
                 },
             ),
             "an interpolating fit".to_string(),

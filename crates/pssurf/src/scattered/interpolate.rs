@@ -5,9 +5,10 @@ use std::sync::Arc;
 
 use nalgebra::{Point2, Vector2};
 
-use super::global::{GlobalGradientError, anchored_global_gradients};
-use super::local::{GradientError, GradientFit, estimate_gradients};
+use super::jumps::{GlobalGradientError, anchored_jump_gradients};
+use super::local::{GradientError, GradientFit, estimate_jets};
 use super::merge::{NEAR_DUPLICATE, merge_near_duplicates};
+use super::network::network_gradients;
 use crate::ps::{Hermite, PsBasis, PsError, PsSpline, PsTriangleChoice, SplitRule};
 use crate::triangulation::{
     MAX_COORDINATE, Triangulation, TriangulationError, duplicate_points, morton_order,
@@ -18,13 +19,20 @@ use crate::triangulation::{
 pub enum GradientMethod {
     /// Local weighted quadratic least squares at each vertex
     /// ([`estimate_gradients`](super::estimate_gradients)): O(n), embarrassingly parallel.
-    /// The default: the more accurate on real (rough) elevation data (docs/performance.md).
+    /// The default: the fastest, and on one of the two real elevation data sets of
+    /// docs/performance.md the more accurate.
     #[default]
     Local,
-    /// The minimum Hessian-jump energy over the whole triangulation
-    /// ([`estimate_gradients_global`](super::estimate_gradients_global)): one sparse solve;
-    /// 1.1–1.9× lower RMS error on Franke's function, higher on rough real data.
+    /// The least curvature of the edge network beyond the locally fitted one, over the
+    /// whole triangulation ([`estimate_gradients_global`](super::estimate_gradients_global),
+    /// Clough–Tocher's choice made exact on quadratics): one well-conditioned sparse solve
+    /// by conjugate gradients; 2–3× lower RMS error than `Local` on Franke's function.
     Global,
+    /// The least Hessian-jump energy over the whole triangulation
+    /// ([`estimate_gradients_jumps`](super::estimate_gradients_jumps)): the least-energy
+    /// interpolant, the limit λ → 0 of the smoothing fit; one sparse Cholesky solve, the
+    /// most accurate on smooth gridded data, the least on rough real data.
+    Jumps,
 }
 
 /// Why an interpolant could not be made.
@@ -342,29 +350,33 @@ pub fn estimate_gradients_by(
     values: &[f64],
     method: GradientMethod,
 ) -> Result<(Vec<Vector2<f64>>, GradientReport), FitError> {
-    let local = estimate_gradients(basis.triangulation(), values)?;
+    let jets = estimate_jets(basis.triangulation(), values)?;
     let mut report = GradientReport {
         method,
-        widened: local
+        widened: jets
             .iter()
-            .filter(|(_, k)| matches!(k, GradientFit::Quadratic { rings } if *rings > 1))
+            .filter(|jet| matches!(jet.fit, GradientFit::Quadratic { rings } if rings > 1))
             .count(),
-        planar: local
+        planar: jets
             .iter()
-            .filter(|(_, k)| *k == GradientFit::Linear)
+            .filter(|jet| jet.fit == GradientFit::Linear)
             .count(),
         stronger_anchor: None,
         kept_local: 0,
     };
-    let local: Vec<Vector2<f64>> = local.into_iter().map(|(g, _)| g).collect();
+    let local: Vec<Vector2<f64>> = jets.iter().map(|jet| jet.gradient).collect();
     let gradients = match method {
         GradientMethod::Local => local,
-        GradientMethod::Global => {
-            let (g, eta) = anchored_global_gradients(basis, values, &local)?;
+        GradientMethod::Global | GradientMethod::Jumps => {
+            let (g, eta) = if method == GradientMethod::Jumps {
+                anchored_jump_gradients(basis, values, &local)?
+            } else {
+                network_gradients(basis, values, &jets)
+            };
             if eta > super::ANCHOR {
                 report.stronger_anchor = Some(eta);
             }
-            report.kept_local = super::global::close_vertices(basis)
+            report.kept_local = super::jumps::close_vertices(basis)
                 .iter()
                 .filter(|&&c| c)
                 .count();

@@ -1,7 +1,7 @@
 //! Scattered data on triangulations: estimating the gradients that Hermite interpolation
 //! (2.30) needs when only values are known.
 
-use nalgebra::Vector2;
+use nalgebra::{Matrix2, Vector2};
 use rayon::prelude::*;
 use thiserror::Error;
 
@@ -39,13 +39,31 @@ pub fn estimate_gradients(
     tri: &Triangulation,
     values: &[f64],
 ) -> Result<Vec<(Vector2<f64>, GradientFit)>, GradientError> {
+    Ok(estimate_jets(tri, values)?
+        .into_iter()
+        .map(|jet| (jet.gradient, jet.fit))
+        .collect())
+}
+
+/// The local fit at a vertex: the gradient of [`estimate_gradients`] and the fitted
+/// quadratic's Hessian (zero when a plane was fitted).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalJet {
+    /// The estimated ∇f.
+    pub gradient: Vector2<f64>,
+    /// The estimated ∇²f (exact, like the gradient, on quadratic data).
+    pub hessian: Matrix2<f64>,
+    /// How they were fitted.
+    pub fit: GradientFit,
+}
+
+/// [`estimate_gradients`] with the fitted Hessians.
+pub fn estimate_jets(tri: &Triangulation, values: &[f64]) -> Result<Vec<LocalJet>, GradientError> {
     assert_eq!(values.len(), tri.vertex_count(), "one value per vertex");
     (0..tri.vertex_count())
         .into_par_iter()
         .with_min_len(512)
-        .map_init(Workspace::default, |work, i| {
-            gradient_at(tri, values, i, work)
-        })
+        .map_init(Workspace::default, |work, i| jet_at(tri, values, i, work))
         .collect()
 }
 
@@ -62,44 +80,63 @@ struct Workspace {
     design: Vec<f64>,
 }
 
-fn gradient_at(
+fn jet_at(
     tri: &Triangulation,
     values: &[f64],
     i: usize,
     work: &mut Workspace,
-) -> Result<(Vector2<f64>, GradientFit), GradientError> {
+) -> Result<LocalJet, GradientError> {
     work.seen.clear();
     work.seen.push(i);
     work.ring.clear();
     work.ring.push(i);
-    // The best-conditioned quadratic fit so far: (condition, gradient, rings).
-    let mut best: Option<(f64, Vector2<f64>, usize)> = None;
+    // The best-conditioned quadratic fit so far, with its rings.
+    let mut best: Option<(Fitted, usize)> = None;
     for rings in 1..=3 {
         next_ring(tri, work);
         let nbrs = &work.seen[1..];
         if nbrs.len() < 5 {
             continue;
         }
-        if let Some((g, cond)) = fit(tri, values, i, nbrs, true, &mut work.design) {
-            if cond <= MAX_CONDITION {
-                return Ok((g, GradientFit::Quadratic { rings }));
+        if let Some(fitted) = fit(tri, values, i, nbrs, true, &mut work.design) {
+            if fitted.condition <= MAX_CONDITION {
+                return Ok(fitted.jet(GradientFit::Quadratic { rings }));
             }
-            if best.is_none_or(|(c, _, _)| cond < c) {
-                best = Some((cond, g, rings));
+            if best.is_none_or(|(b, _)| fitted.condition < b.condition) {
+                best = Some((fitted, rings));
             }
         }
     }
     // No neighbourhood is well posed: the best quadratic fit if it is still determined
     // (it keeps quadratics exact), else a plane.
-    if let Some((cond, g, rings)) = best
-        && cond <= MAX_USABLE_CONDITION
+    if let Some((fitted, rings)) = best
+        && fitted.condition <= MAX_USABLE_CONDITION
     {
-        return Ok((g, GradientFit::Quadratic { rings }));
+        return Ok(fitted.jet(GradientFit::Quadratic { rings }));
     }
     fit(tri, values, i, &work.seen[1..], false, &mut work.design)
-        .filter(|(_, cond)| *cond <= MAX_USABLE_CONDITION)
-        .map(|(g, _)| (g, GradientFit::Linear))
+        .filter(|fitted| fitted.condition <= MAX_USABLE_CONDITION)
+        .map(|fitted| fitted.jet(GradientFit::Linear))
         .ok_or(GradientError { vertex: i })
+}
+
+/// One least-squares fit: its derivatives and the condition number of its design matrix.
+#[derive(Clone, Copy)]
+struct Fitted {
+    gradient: Vector2<f64>,
+    /// Zero for a plane.
+    hessian: Matrix2<f64>,
+    condition: f64,
+}
+
+impl Fitted {
+    fn jet(self, fit: GradientFit) -> LocalJet {
+        LocalJet {
+            gradient: self.gradient,
+            hessian: self.hessian,
+            fit,
+        }
+    }
 }
 
 /// Makes the vertices adjacent to `work.ring` not yet `work.seen` the new ring, adding
@@ -154,7 +191,7 @@ fn fit(
     nbrs: &[usize],
     quadratic: bool,
     work: &mut Vec<f64>,
-) -> Option<(Vector2<f64>, f64)> {
+) -> Option<Fitted> {
     let p = tri.vertex(i);
     let h = nbrs
         .iter()
@@ -178,7 +215,18 @@ fn fit(
         }
         x[j] = s / rmat[j][j];
     }
-    Some((Vector2::new(x[0] / norms[0], x[1] / norms[1]) / h, cond))
+    // Undo the column scaling, then the coordinates' (d = (p − V_i) / h).
+    let c: [f64; 5] = std::array::from_fn(|k| x[k] / norms[k]);
+    let hessian = if quadratic {
+        Matrix2::new(c[2], c[3], c[3], c[4]) / (h * h)
+    } else {
+        Matrix2::zeros()
+    };
+    Some(Fitted {
+        gradient: Vector2::new(c[0], c[1]) / h,
+        hessian,
+        condition: cond,
+    })
 }
 
 /// The weighted design matrix [A | b] of the local fit at vertex `i` (column-major in

@@ -1,5 +1,5 @@
-//! The global gradient estimator: the gradients whose Hermite PS-spline through the values
-//! has the least Hessian-jump energy ([`crate::ps::Energy::HessianJumps`], with the jumps at
+//! The least-jump gradient estimator: the gradients whose Hermite PS-spline through the
+//! values has the least Hessian-jump energy ([`crate::ps::Energy::HessianJumps`], with the jumps at
 //! needle and sliver pieces faded: [`PsBasis::faded_jump_energy_matrix`]), found by one
 //! sparse solve.
 //!
@@ -56,7 +56,7 @@ pub enum GlobalGradientError {
 
 /// The gradients minimising the Hessian-jump energy of the Hermite PS-spline with these
 /// vertex values (module docs).
-pub fn estimate_gradients_global(
+pub fn estimate_gradients_jumps(
     basis: &PsBasis,
     values: &[f64],
 ) -> Result<Vec<Vector2<f64>>, GlobalGradientError> {
@@ -64,14 +64,14 @@ pub fn estimate_gradients_global(
         .into_iter()
         .map(|(g, _)| g)
         .collect();
-    anchored_global_gradients(basis, values, &local).map(|(g, _)| g)
+    anchored_jump_gradients(basis, values, &local).map(|(g, _)| g)
 }
 
-/// [`estimate_gradients_global`] with the local estimates that anchor it already known; also
+/// [`estimate_gradients_jumps`] with the local estimates that anchor it already known; also
 /// returns the anchor used ([`ANCHOR`], or the first of [`STRONGER_ANCHORS`] with which the
 /// system could be factorised, or infinity when none could and the result is the local
 /// estimate).
-pub(super) fn anchored_global_gradients(
+pub(super) fn anchored_jump_gradients(
     basis: &PsBasis,
     values: &[f64],
     local: &[Vector2<f64>],

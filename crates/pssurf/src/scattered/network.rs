@@ -1,0 +1,513 @@
+//! The network gradient estimator: the gradients whose edge curves bend as little as
+//! possible *beyond the curvature the local fits see*. The quadratic analogue of the
+//! minimum-norm network that SciPy's `CloughTocher2DInterpolator` solves for (Nielson 1983,
+//! cubic edge curves), made exact on quadratics.
+//!
+//! On the edge from V_i to V_j (d = V_j − V_i, length L, Δf = f_j − f_i) let s(t), t ∈
+//! [0, 1], be the C¹ quadratic spline with its knot at t = ½ and the Hermite data of the two
+//! ends (values f_i, f_j and slopes d_i = g_i · d, d_j = g_j · d; the PS-spline along an
+//! edge is such a spline with its knot at the edge's split point, thesis 2.30). Its second
+//! derivatives on the two halves are
+//!
+//! s''_L = 4Δf − 3d_i − d_j,  s''_R = −4Δf + d_i + 3d_j,
+//!
+//! and the energy is Σ_edges ½ L⁻³ [(s''_L − c)² + (s''_R − c)²] — the integral over the
+//! network of (the second derivative in arc length − its target)² — with the target
+//! c = ½ dᵀ(H_i + H_j) d from the Hessians of the local quadratic fits
+//! ([`super::estimate_jets`]). With c = 0 this is Nielson's energy for such edges, which does
+//! not reproduce quadratics; with the fitted target both terms vanish on quadratic data
+//! (the local fits are exact there), so quadratics are reproduced.
+//!
+//! The two terms of an edge fix both end slopes along it (their coefficients (−3, −1) and
+//! (1, 3) are independent), so the system in the gradients is about as well conditioned as a
+//! mass matrix, whatever the number of vertices: it is solved by conjugate gradients with
+//! the 2 × 2 diagonal blocks as preconditioner, from the local estimate (21 steps on 100k
+//! random points), without a factorisation. With the knot at the PS-spline's own split
+//! point r instead of ½, the terms' coefficients become (−(1 + r), −(1 − r)) / r, nearly
+//! dependent on the thin triangles of a Delaunay triangulation, and the same system took 87
+//! steps.
+//!
+//! As for [`super::estimate_gradients_jumps`], vertices with a neighbour closer than
+//! [`CLOSE`](super::CLOSE) × the data's extent keep their local estimate, and a small anchor
+//! [`ANCHOR`] × (each vertex's stiffness) × ‖g_i − g_i^local‖² keeps the system definite
+//! (stronger ones, [`STRONGER_ANCHORS`], when the iteration does not converge with it).
+
+use nalgebra::{Matrix2, Vector2};
+use rayon::prelude::*;
+
+use super::jumps::{ANCHOR, GlobalGradientError, STRONGER_ANCHORS, close_vertices};
+use super::local::{LocalJet, estimate_jets};
+use crate::ps::PsBasis;
+use crate::triangulation::Triangulation;
+
+/// The gradients minimising the network energy of these vertex values (module docs).
+pub fn estimate_gradients_global(
+    basis: &PsBasis,
+    values: &[f64],
+) -> Result<Vec<Vector2<f64>>, GlobalGradientError> {
+    let jets = estimate_jets(basis.triangulation(), values)?;
+    Ok(network_gradients(basis, values, &jets).0)
+}
+
+/// [`estimate_gradients_global`] with the local fits known; also returns the anchor used
+/// ([`ANCHOR`], the first of [`STRONGER_ANCHORS`] with which the iteration converged, or
+/// infinity when none did and the result is the local estimate).
+pub(super) fn network_gradients(
+    basis: &PsBasis,
+    values: &[f64],
+    jets: &[LocalJet],
+) -> (Vec<Vector2<f64>>, f64) {
+    let tri = basis.triangulation();
+    assert_eq!(values.len(), tri.vertex_count(), "one value per vertex");
+    assert_eq!(jets.len(), tri.vertex_count(), "one local fit per vertex");
+    let network = Network { tri, values, jets };
+    let local: Vec<Vector2<f64>> = jets.iter().map(|j| j.gradient).collect();
+    let system = network.system(&close_vertices(basis), &local);
+    for eta in std::iter::once(ANCHOR).chain(STRONGER_ANCHORS) {
+        if let Some(g) = system.solve(eta, &local) {
+            let (at_local, local_size) = network.energy(&local);
+            let (at_solution, size) = network.energy(&g);
+            // The local estimate is itself a minimiser when its energy is no larger (to
+            // rounding); where the energy leaves gradients free, the solution only carries
+            // rounding multiplied by 1 / ANCHOR.
+            if at_local <= at_solution + 64.0 * f64::EPSILON * local_size.max(size) {
+                return (local, eta);
+            }
+            return (g, eta);
+        }
+    }
+    (local, f64::INFINITY)
+}
+
+/// The data the energy is made of.
+struct Network<'a> {
+    tri: &'a Triangulation,
+    values: &'a [f64],
+    jets: &'a [LocalJet],
+}
+
+/// The two terms w (α_i (g_i · d) + α_j (g_j · d) − β)² of one edge seen from its end i.
+struct EdgeTerms {
+    d: Vector2<f64>,
+    weight: f64,
+    /// (α_i, α_j, β) of each term.
+    terms: [[f64; 3]; 2],
+}
+
+impl EdgeTerms {
+    /// Σ w (term)² at these end gradients, and Σ w (|parts|)² (its rounding scale).
+    fn energy(&self, gi: Vector2<f64>, gj: Vector2<f64>) -> (f64, f64) {
+        let (si, sj) = (gi.dot(&self.d), gj.dot(&self.d));
+        self.terms
+            .iter()
+            .fold((0.0, 0.0), |(e, size), [a, b, beta]| {
+                let rho = a * si + b * sj - beta;
+                let parts = (a * si).abs() + (b * sj).abs() + beta.abs();
+                (
+                    e + self.weight * rho * rho,
+                    size + self.weight * parts * parts,
+                )
+            })
+    }
+}
+
+impl Network<'_> {
+    /// The terms of edge (i, j) with i's slope first (module docs).
+    fn edge(&self, i: usize, j: usize) -> EdgeTerms {
+        let d = self.tri.vertex(j) - self.tri.vertex(i);
+        let length = d.norm();
+        let df4 = 4.0 * (self.values[j] - self.values[i]);
+        let c = 0.5 * d.dot(&((self.jets[i].hessian + self.jets[j].hessian) * d));
+        EdgeTerms {
+            d,
+            weight: 0.5 / (length * length * length),
+            terms: [[-3.0, -1.0, c - df4], [1.0, 3.0, c + df4]],
+        }
+    }
+
+    /// Calls `f(j)` once for each neighbour j of vertex i.
+    fn for_neighbours(&self, i: usize, work: &mut Vec<u32>, mut f: impl FnMut(usize)) {
+        work.clear();
+        for &t in self.tri.molecule(i) {
+            work.extend(self.tri.triangle(t as usize).map(|v| v as u32));
+        }
+        work.sort_unstable();
+        work.dedup();
+        for &j in work.iter().filter(|&&j| j as usize != i) {
+            f(j as usize);
+        }
+    }
+
+    /// The energy at gradients `g` (without the constant of the values alone), and the
+    /// scale of its rounding.
+    fn energy(&self, g: &[Vector2<f64>]) -> (f64, f64) {
+        (0..g.len())
+            .into_par_iter()
+            .with_min_len(1024)
+            .map_init(Vec::new, |work, i| {
+                let mut sum = (0.0, 0.0);
+                self.for_neighbours(i, work, |j| {
+                    if j > i {
+                        let (e, size) = self.edge(i, j).energy(g[i], g[j]);
+                        sum = (sum.0 + e, sum.1 + size);
+                    }
+                });
+                sum
+            })
+            .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    /// The normal equations in the gradients, fixed vertices holding their `local` estimate.
+    fn system(&self, fixed: &[bool], local: &[Vector2<f64>]) -> GradientSystem {
+        let n = self.tri.vertex_count();
+        const CHUNK: usize = 1024;
+        let rows: Vec<Rows> = (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|k| {
+                let mut rows = Rows::default();
+                let mut work = Vec::new();
+                for i in k * CHUNK..((k + 1) * CHUNK).min(n) {
+                    self.row(i, fixed, local, &mut work, &mut rows);
+                }
+                rows
+            })
+            .collect();
+        GradientSystem::concatenate(rows)
+    }
+
+    /// Appends row i of the normal equations to `rows`.
+    fn row(
+        &self,
+        i: usize,
+        fixed: &[bool],
+        local: &[Vector2<f64>],
+        work: &mut Vec<u32>,
+        rows: &mut Rows,
+    ) {
+        let first = rows.cols.len();
+        let mut diagonal = Matrix2::zeros();
+        let mut rhs = Vector2::zeros();
+        if fixed[i] {
+            diagonal = Matrix2::identity();
+            rhs = local[i];
+        } else {
+            self.for_neighbours(i, work, |j| {
+                let edge = self.edge(i, j);
+                let ddt = edge.d * edge.d.transpose();
+                let mut off = 0.0;
+                for [a, b, beta] in edge.terms {
+                    diagonal += edge.weight * a * a * ddt;
+                    off += edge.weight * a * b;
+                    rhs += edge.weight * a * beta * edge.d;
+                }
+                if fixed[j] {
+                    rhs -= off * ddt * local[j];
+                } else {
+                    rows.cols.push(j as u32);
+                    rows.blocks.push(off * ddt);
+                }
+            });
+        }
+        rows.lens.push(rows.cols.len() - first);
+        rows.diagonal.push(diagonal);
+        rows.rhs.push(rhs);
+        rows.stiffness.push(if fixed[i] {
+            0.0
+        } else {
+            0.5 * diagonal.trace()
+        });
+    }
+}
+
+/// Rows of the normal equations for a range of vertices.
+#[derive(Default)]
+struct Rows {
+    /// Each row's off-diagonal columns and blocks, one row after the other.
+    cols: Vec<u32>,
+    blocks: Vec<Matrix2<f64>>,
+    lens: Vec<usize>,
+    diagonal: Vec<Matrix2<f64>>,
+    rhs: Vec<Vector2<f64>>,
+    stiffness: Vec<f64>,
+}
+
+/// The symmetric system A g = b in the gradients, 2 × 2 blocks in compressed rows (both
+/// triangles, the diagonal apart).
+struct GradientSystem {
+    start: Vec<usize>,
+    cols: Vec<u32>,
+    blocks: Vec<Matrix2<f64>>,
+    diagonal: Vec<Matrix2<f64>>,
+    rhs: Vec<Vector2<f64>>,
+    /// The anchor's scale at each vertex (zero where the gradient is fixed).
+    stiffness: Vec<f64>,
+}
+
+/// Rows per parallel task in the products.
+const ROWS_PER_TASK: usize = 2048;
+
+/// The relative residual ‖b − A g‖ / ‖b‖ at which the iteration stops.
+const RELATIVE_RESIDUAL: f64 = 1e-13;
+
+/// The most steps before the system counts as not solved with an anchor.
+const MAX_STEPS: usize = 1000;
+
+impl GradientSystem {
+    fn concatenate(parts: Vec<Rows>) -> Self {
+        let mut system = GradientSystem {
+            start: vec![0],
+            cols: Vec::new(),
+            blocks: Vec::new(),
+            diagonal: Vec::new(),
+            rhs: Vec::new(),
+            stiffness: Vec::new(),
+        };
+        for part in parts {
+            for len in part.lens {
+                system.start.push(system.start.last().unwrap() + len);
+            }
+            system.cols.extend(part.cols);
+            system.blocks.extend(part.blocks);
+            system.diagonal.extend(part.diagonal);
+            system.rhs.extend(part.rhs);
+            system.stiffness.extend(part.stiffness);
+        }
+        system
+    }
+
+    /// y = (A + η S) x.
+    fn multiply(&self, eta: f64, x: &[Vector2<f64>], y: &mut [Vector2<f64>]) {
+        y.par_iter_mut()
+            .enumerate()
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(i, yi)| {
+                let mut sum = self.diagonal[i] * x[i] + eta * self.stiffness[i] * x[i];
+                for k in self.start[i]..self.start[i + 1] {
+                    sum += self.blocks[k] * x[self.cols[k] as usize];
+                }
+                *yi = sum;
+            });
+    }
+
+    /// The anchored system's solution by conjugate gradients preconditioned with the
+    /// inverses of the diagonal blocks (Saad, *Iterative methods for sparse linear
+    /// systems*, Algorithm 9.1), from `local`; `None` when a diagonal block or a search
+    /// direction shows the system not positive definite, or it does not converge.
+    fn solve(&self, eta: f64, local: &[Vector2<f64>]) -> Option<Vec<Vector2<f64>>> {
+        let n = self.rhs.len();
+        let inverses: Option<Vec<Matrix2<f64>>> = (0..n)
+            .into_par_iter()
+            .with_min_len(ROWS_PER_TASK)
+            .map(|i| {
+                let d = self.diagonal[i] + Matrix2::identity() * (eta * self.stiffness[i]);
+                d.cholesky().map(|l| l.inverse())
+            })
+            .collect();
+        let inverses = inverses?;
+        let b: Vec<Vector2<f64>> = (0..n)
+            .map(|i| self.rhs[i] + eta * self.stiffness[i] * local[i])
+            .collect();
+        let target = RELATIVE_RESIDUAL * dot(&b, &b).sqrt();
+        let mut x = local.to_vec();
+        let mut q = vec![Vector2::zeros(); n];
+        let residual = |x: &[Vector2<f64>], q: &mut [Vector2<f64>]| -> Vec<Vector2<f64>> {
+            self.multiply(eta, x, q);
+            b.par_iter().zip(q.par_iter()).map(|(b, q)| b - q).collect()
+        };
+        let mut r = residual(&x, &mut q);
+        if !dot(&r, &r).is_finite() {
+            return None;
+        }
+        if dot(&r, &r).sqrt() <= target {
+            return Some(x);
+        }
+        let precondition = |r: &[Vector2<f64>]| -> Vec<Vector2<f64>> {
+            r.par_iter()
+                .zip(inverses.par_iter())
+                .with_min_len(ROWS_PER_TASK)
+                .map(|(r, m)| m * r)
+                .collect()
+        };
+        let mut z = precondition(&r);
+        let mut p = z.clone();
+        let mut rz = dot(&r, &z);
+        for _ in 0..MAX_STEPS {
+            self.multiply(eta, &p, &mut q);
+            let pq = dot(&p, &q);
+            if !(pq > 0.0) {
+                return None;
+            }
+            let alpha = rz / pq;
+            axpy(&mut x, alpha, &p);
+            axpy(&mut r, -alpha, &q);
+            if dot(&r, &r).sqrt() <= target {
+                // The recurrence may drift from the true residual: check, and go on from
+                // the true one if it is not yet small enough.
+                r = residual(&x, &mut q);
+                if dot(&r, &r).sqrt() <= target {
+                    return Some(x);
+                }
+            }
+            z = precondition(&r);
+            let rz_next = dot(&r, &z);
+            let beta = rz_next / rz;
+            rz = rz_next;
+            p.par_iter_mut()
+                .zip(z.par_iter())
+                .with_min_len(ROWS_PER_TASK)
+                .for_each(|(p, z)| *p = z + beta * *p);
+        }
+        None
+    }
+}
+
+/// Σ aᵢ · bᵢ.
+fn dot(a: &[Vector2<f64>], b: &[Vector2<f64>]) -> f64 {
+    a.par_iter()
+        .zip(b.par_iter())
+        .with_min_len(ROWS_PER_TASK)
+        .map(|(a, b)| a.dot(b))
+        .sum()
+}
+
+/// y += α x.
+fn axpy(y: &mut [Vector2<f64>], alpha: f64, x: &[Vector2<f64>]) {
+    y.par_iter_mut()
+        .zip(x.par_iter())
+        .with_min_len(ROWS_PER_TASK)
+        .for_each(|(y, x)| *y += alpha * x);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_util::meshes::catalogue;
+    use crate::test_util::*;
+    use nalgebra::Point2;
+
+    /// The terms against the C¹ quadratic spline with its knot at ½ built independently from
+    /// its Bézier ordinates: b₀ = f_i, b₁ = f_i + d_i/4, b₃ = f_j − d_j/4, b₄ = f_j and
+    /// b₂ = (b₁ + b₃)/2, whose second derivatives in t are 8(b₀ − 2b₁ + b₂) and
+    /// 8(b₂ − 2b₃ + b₄).
+    #[test]
+    fn edge_terms_are_the_midpoint_splines_second_derivatives_less_the_target() {
+        let mut r = rng(301);
+        for _ in 0..500 {
+            let tri = Triangulation::new(
+                (0..3)
+                    .map(|_| Point2::new(uniform(&mut r, -2.0, 2.0), uniform(&mut r, -2.0, 2.0)))
+                    .collect(),
+                vec![[0, 1, 2]],
+            );
+            let values: Vec<f64> = (0..3).map(|_| uniform(&mut r, -1.0, 1.0)).collect();
+            let jets: Vec<LocalJet> = (0..3)
+                .map(|_| LocalJet {
+                    gradient: Vector2::zeros(),
+                    hessian: {
+                        let (a, b, c) = (
+                            uniform(&mut r, -1.0, 1.0),
+                            uniform(&mut r, -1.0, 1.0),
+                            uniform(&mut r, -1.0, 1.0),
+                        );
+                        Matrix2::new(a, b, b, c)
+                    },
+                    fit: super::super::GradientFit::Linear,
+                })
+                .collect();
+            let network = Network {
+                tri: &tri,
+                values: &values,
+                jets: &jets,
+            };
+            let (i, j) = (0, 2);
+            let (gi, gj) = (random_dir(&mut r) * 3.0, random_dir(&mut r) * 3.0);
+            let edge = network.edge(i, j);
+            let d = tri.vertex(j) - tri.vertex(i);
+            let (di, dj) = (gi.dot(&d), gj.dot(&d));
+            let b = [
+                values[i],
+                values[i] + di / 4.0,
+                0.0,
+                values[j] - dj / 4.0,
+                values[j],
+            ];
+            let b2 = 0.5 * (b[1] + b[3]);
+            let second = [
+                8.0 * (b[0] - 2.0 * b[1] + b2),
+                8.0 * (b2 - 2.0 * b[3] + b[4]),
+            ];
+            let target = 0.5 * d.dot(&((jets[i].hessian + jets[j].hessian) * d));
+            for (k, [a, bb, beta]) in edge.terms.iter().enumerate() {
+                let rho = a * di + bb * dj - beta;
+                let expected = second[k] - target;
+                assert!(
+                    near(
+                        rho,
+                        expected,
+                        1e-12 * (1.0 + expected.abs() + di.abs() + dj.abs())
+                    ),
+                    "{rho} {expected}"
+                );
+            }
+            let length = d.norm();
+            assert!(near(edge.weight, 0.5 / length.powi(3), 1e-15 * edge.weight));
+        }
+    }
+
+    /// The solution is a stationary point of the energy plus the anchor, evaluated edge by
+    /// edge ([`Network::energy`]) rather than through the assembled rows: along random
+    /// directions the central difference of the (quadratic) objective vanishes to rounding.
+    #[test]
+    fn the_solution_is_stationary_for_the_energy_plus_anchor() {
+        for (name, tri) in catalogue(302) {
+            let values: Vec<f64> = tri
+                .vertices()
+                .iter()
+                .map(|p| (3.0 * p.x).sin() * (2.0 * p.y).cos() + p.x * p.x * p.y)
+                .collect();
+            let basis = PsBasis::optimal(tri.clone()).unwrap();
+            let jets = estimate_jets(&tri, &values).unwrap();
+            let local: Vec<Vector2<f64>> = jets.iter().map(|j| j.gradient).collect();
+            let fixed = close_vertices(&basis);
+            let network = Network {
+                tri: &tri,
+                values: &values,
+                jets: &jets,
+            };
+            let system = network.system(&fixed, &local);
+            let g = system.solve(ANCHOR, &local).expect("converges");
+            let objective = |g: &[Vector2<f64>]| {
+                let anchor: f64 = (0..g.len())
+                    .map(|i| ANCHOR * system.stiffness[i] * (g[i] - local[i]).norm_squared())
+                    .sum();
+                network.energy(g).0 + anchor
+            };
+            let mut r = rng(303);
+            for _ in 0..5 {
+                let v: Vec<Vector2<f64>> = (0..g.len())
+                    .map(|i| {
+                        if fixed[i] {
+                            Vector2::zeros()
+                        } else {
+                            random_dir(&mut r)
+                        }
+                    })
+                    .collect();
+                let h = 1e-3;
+                let shifted = |s: f64| -> Vec<Vector2<f64>> {
+                    g.iter().zip(&v).map(|(g, v)| g + s * v).collect()
+                };
+                let slope = (objective(&shifted(h)) - objective(&shifted(-h))) / (2.0 * h);
+                let curvature = (objective(&shifted(h)) - 2.0 * objective(&g)
+                    + objective(&shifted(-h)))
+                    / (h * h);
+                let scale = network.energy(&g).1.max(curvature);
+                assert!(
+                    slope.abs() <= 1e-9 * scale,
+                    "{name}: slope {slope:e}, scale {scale:e}"
+                );
+                assert!(curvature > 0.0, "{name}: curvature {curvature:e}");
+            }
+        }
+    }
+}
