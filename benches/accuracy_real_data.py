@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Held-out accuracy on real elevation data: `pssurf fit` (both gradient estimators) against
-SciPy's CloughTocher2DInterpolator.
+"""Held-out accuracy on real elevation data: `pssurf fit` (its three gradient estimators)
+against SciPy's CloughTocher2DInterpolator.
 
 The data ship with matplotlib (pip install matplotlib): the Jacksboro fault DEM (344 × 403,
 metres) and the topobathy grid of the Puget Sound area (91 × 120, metres). For each density a
@@ -56,9 +56,11 @@ def main():
     ap.add_argument("--pssurf", default="target/release/pssurf")
     ap.add_argument("--seeds", type=int, default=3)
     args = ap.parse_args()
-    print("| data set | density | points | held out | CT RMS | local RMS | global RMS "
-          "| CT boundary | local boundary | global boundary | global / CT |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    methods = ["local", "global", "jumps"]
+    print("| data set | density | points | held out | CT RMS / boundary | "
+          + " | ".join(f"{g} RMS / boundary" for g in methods) + " | "
+          + " | ".join(f"{g} / CT" for g in methods) + " |")
+    print("|---|---|---|---|---|" + "---|" * (2 * len(methods)))
     with tempfile.TemporaryDirectory() as tmp:
         for name, grid in datasets():
             ny, nx = grid.shape
@@ -66,7 +68,7 @@ def main():
             nodes = np.c_[xx.ravel(), yy.ravel()].astype(float)
             values = grid.ravel()
             for density in [0.02, 0.05, 0.2]:
-                acc = {k: [] for k in ["ct", "local", "global", "ctb", "localb", "globalb"]}
+                acc = {k + b: [] for k in ["ct"] + methods for b in ["", "b"]}
                 counts = (0, 0)
                 for seed in range(args.seeds):
                     rng = np.random.default_rng(seed)
@@ -80,16 +82,17 @@ def main():
                     counts = (len(train), len(test))
                     ct = CloughTocher2DInterpolator(train, z)(test)
                     preds = {"ct": ct}
-                    for g in ["local", "global"]:
+                    for g in methods:
                         preds[g] = run_pssurf(args.pssurf, train, z, test, g, tmp)
                     for k, p in preds.items():
                         err = p - truth
                         acc[k].append(np.sqrt(np.mean(err ** 2)))
                         acc[k + "b"].append(np.sqrt(np.mean(err[near] ** 2)))
                 m = {k: np.mean(v) for k, v in acc.items()}
-                print(f"| {name} | {density:.0%} | {counts[0]} | {counts[1]} | {m['ct']:.3f} "
-                      f"| {m['local']:.3f} | {m['global']:.3f} | {m['ctb']:.3f} "
-                      f"| {m['localb']:.3f} | {m['globalb']:.3f} | {m['global'] / m['ct']:.3f} |")
+                cells = [f"{m[k]:.3f} / {m[k + 'b']:.3f}" for k in ["ct"] + methods]
+                cells += [f"{m[g] / m['ct']:.3f} / {m[g + 'b'] / m['ctb']:.3f}" for g in methods]
+                print(f"| {name} | {density:.0%} | {counts[0]} | {counts[1]} | " + " | ".join(cells) + " |",
+                      flush=True)
 
 
 if __name__ == "__main__":

@@ -72,6 +72,7 @@ fn estimates_bound_the_measured_peak_memory() {
         ],
         vec!["fit", "big.csv", "-o", "o.json"],
         vec!["fit", "big.csv", "--gradients", "global", "-o", "o.json"],
+        vec!["fit", "big.csv", "--gradients", "jumps", "-o", "o.json"],
         vec!["fit", "big.csv", "--approximate", "3000", "-o", "o.json"],
         vec![
             "curvature",
