@@ -578,10 +578,15 @@ fn fit_global_gradients_and_smoothing_fit_write_loadable_surfaces() {
         csv += &format!("{x},{y},{}\n", (3.0 * x).sin() * y + noise);
     }
     let data = write(d.path(), "n.csv", &csv);
-    let out = d.path().join("g.json");
-    let msg = ok_stderr(&["fit", &s(&data), "-o", &s(&out), "--gradients", "global"]);
-    assert!(msg.contains("Hessian-jump energy"), "{msg}");
-    ok(&["info", &s(&out)]);
+    for (method, says) in [
+        ("global", "least network curvature"),
+        ("jumps", "least Hessian-jump energy"),
+    ] {
+        let out = d.path().join(format!("{method}.json"));
+        let msg = ok_stderr(&["fit", &s(&data), "-o", &s(&out), "--gradients", method]);
+        assert!(msg.contains(says), "{msg}");
+        ok(&["info", &s(&out)]);
+    }
     let out = d.path().join("a.json");
     let msg = ok_stderr(&["fit", &s(&data), "-o", &s(&out), "--approximate", "60"]);
     assert!(

@@ -778,3 +778,25 @@ fn a_wheel_of_points_is_fitted_with_bounded_neighbourhoods() {
         assert!(worst < 1e-10, "{method:?}: {worst:e}");
     }
 }
+
+/// Points on a circle and its centre with random values (found by an outside audit): the
+/// centre has 20,000 neighbours, and the sum over its row cannot be computed to 1e-13 of
+/// the right-hand side. The conjugate gradients ran their 1000 steps, the system counted as
+/// ill-conditioned and the result was pulled to the local estimate with an anchor of 0.1
+/// (and took twice the time). Now they stop at the residual's rounding floor, with the
+/// weakest anchor.
+#[test]
+fn global_gradients_converge_at_a_vertex_of_degree_20000() {
+    let n = 20_000;
+    let mut pts: Vec<Point2<f64>> = (0..n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            Point2::new(a.cos(), a.sin())
+        })
+        .collect();
+    pts.push(Point2::origin());
+    let mut r = ChaCha8Rng::seed_from_u64(7);
+    let z: Vec<f64> = pts.iter().map(|_| r.random_range(0.0..1.0)).collect();
+    let fit = interpolate(&pts, &z, GradientMethod::Global).unwrap();
+    assert_eq!(fit.gradients.stronger_anchor, None);
+}
