@@ -53,9 +53,22 @@ pub struct LocalJet {
     pub gradient: Vector2<f64>,
     /// The estimated ∇²f (exact, like the gradient, on quadratic data).
     pub hessian: Matrix2<f64>,
+    /// Whether the data determine the Hessian: a quadratic fit none of whose columns is
+    /// below [`HESSIAN_COLUMN_FLOOR`] × the largest. (The condition number is that of the
+    /// design with unit columns, so it does not see a column made of rounding-size
+    /// offsets.)
+    pub hessian_determined: bool,
     /// How they were fitted.
     pub fit: GradientFit,
 }
+
+/// The smallest norm of a column of a local fit's design (in coordinates scaled by the
+/// neighbourhood's size), relative to the largest, with which the fit's Hessian counts as
+/// determined ([`LocalJet::hessian_determined`]). At the corner of a grid whose points were
+/// moved by 5e-8, every neighbour of the corner lay on the two boundary lines: the column of
+/// d_x d_y was made of the offsets alone (1e-7 of the others), the fit passed the condition
+/// test, and its ∂²f/∂x∂y was off by 1.5e5.
+pub const HESSIAN_COLUMN_FLOOR: f64 = 1e-3;
 
 /// [`estimate_gradients`] with the fitted Hessians.
 pub fn estimate_jets(tri: &Triangulation, values: &[f64]) -> Result<Vec<LocalJet>, GradientError> {
@@ -126,6 +139,7 @@ struct Fitted {
     gradient: Vector2<f64>,
     /// Zero for a plane.
     hessian: Matrix2<f64>,
+    hessian_determined: bool,
     condition: f64,
 }
 
@@ -134,6 +148,7 @@ impl Fitted {
         LocalJet {
             gradient: self.gradient,
             hessian: self.hessian,
+            hessian_determined: self.hessian_determined,
             fit,
         }
     }
@@ -225,6 +240,9 @@ fn fit(
     Some(Fitted {
         gradient: Vector2::new(c[0], c[1]) / h,
         hessian,
+        hessian_determined: quadratic
+            && norms.iter().fold(f64::INFINITY, |a, &b| a.min(b))
+                >= HESSIAN_COLUMN_FLOOR * norms.iter().fold(0.0f64, |a, &b| a.max(b)),
         condition: cond,
     })
 }
@@ -354,6 +372,47 @@ mod tests {
     use crate::test_util::meshes::catalogue;
     use crate::test_util::*;
     use nalgebra::Point2;
+
+    /// A corner all of whose neighbours lie on the two boundary lines, 1e-9 off them (as
+    /// at the corner of a grid whose points were moved by 5e-8, where boundary slivers fan
+    /// out of the corner): the column of d_x d_y is made of the offsets alone, so the fit's
+    /// ∂²f/∂x∂y is not determined, and is marked so; on random triangulations nearly every
+    /// fit's Hessian is.
+    #[test]
+    fn a_hessian_fitted_from_points_on_two_lines_is_marked_undetermined() {
+        let v = [
+            (0.0, 0.0),
+            (0.1, 3e-9),
+            (0.2, 1e-9),
+            (0.3, -1e-9),
+            (3e-9, 0.1),
+            (1e-9, 0.2),
+            (-1e-9, 0.3),
+        ];
+        let tri = Triangulation::new(
+            v.iter().map(|&(x, y)| Point2::new(x, y)).collect(),
+            vec![[0, 3, 2], [0, 2, 1], [0, 1, 4], [0, 4, 5], [0, 5, 6]],
+        );
+        let values: Vec<f64> = v
+            .iter()
+            .map(|&(x, y)| (3.0 * x).sin() * (2.0 * y).cos())
+            .collect();
+        let jets = estimate_jets(&tri, &values).unwrap();
+        assert_eq!(jets[0].fit, GradientFit::Quadratic { rings: 1 });
+        assert!(!jets[0].hessian_determined, "{:?}", jets[0]);
+        let mut r = rng(72);
+        let (mut determined, mut fits) = (0, 0);
+        for (_, tri) in catalogue(73) {
+            let values: Vec<f64> = (0..tri.vertex_count())
+                .map(|_| uniform(&mut r, -1.0, 1.0))
+                .collect();
+            for jet in estimate_jets(&tri, &values).unwrap() {
+                fits += 1;
+                determined += usize::from(jet.hessian_determined);
+            }
+        }
+        assert!(determined * 100 >= fits * 95, "{determined} of {fits}");
+    }
 
     #[test]
     fn the_condition_number_is_the_svd_ratio_or_a_bound_below_the_limit() {

@@ -19,8 +19,8 @@ pub use interpolate::{
 };
 pub use jumps::{ANCHOR, CLOSE, GlobalGradientError, STRONGER_ANCHORS, estimate_gradients_jumps};
 pub use local::{
-    GradientError, GradientFit, LocalJet, MAX_CONDITION, MAX_USABLE_CONDITION, estimate_gradients,
-    estimate_jets,
+    GradientError, GradientFit, HESSIAN_COLUMN_FLOOR, LocalJet, MAX_CONDITION,
+    MAX_USABLE_CONDITION, estimate_gradients, estimate_jets,
 };
 pub use merge::{
     MergedData, NEAR_DUPLICATE, group_mean, merge_near_duplicates, near_duplicate_groups,

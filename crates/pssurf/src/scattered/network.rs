@@ -60,7 +60,12 @@ pub(super) fn network_gradients(
     let tri = basis.triangulation();
     assert_eq!(values.len(), tri.vertex_count(), "one value per vertex");
     assert_eq!(jets.len(), tri.vertex_count(), "one local fit per vertex");
-    let network = Network { tri, values, jets };
+    let hessians = target_hessians(tri, jets);
+    let network = Network {
+        tri,
+        values,
+        hessians: &hessians,
+    };
     let local: Vec<Vector2<f64>> = jets.iter().map(|j| j.gradient).collect();
     let system = network.system(&close_vertices(basis), &local);
     for eta in std::iter::once(ANCHOR).chain(STRONGER_ANCHORS) {
@@ -79,11 +84,41 @@ pub(super) fn network_gradients(
     (local, f64::INFINITY)
 }
 
+/// The Hessians the targets come from: each vertex's local fit's where the data determine
+/// it ([`LocalJet::hessian_determined`]), elsewhere the mean of its neighbours' determined
+/// ones (exact, like them, on quadratic data), or its own if it has none.
+fn target_hessians(tri: &Triangulation, jets: &[LocalJet]) -> Vec<Matrix2<f64>> {
+    (0..jets.len())
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|i| {
+            if jets[i].hessian_determined {
+                return jets[i].hessian;
+            }
+            let (mut sum, mut count) = (Matrix2::zeros(), 0usize);
+            for &t in tri.molecule(i) {
+                for j in tri.triangle(t as usize) {
+                    if j != i && jets[j].hessian_determined {
+                        sum += jets[j].hessian;
+                        count += 1;
+                    }
+                }
+            }
+            if count > 0 {
+                sum / count as f64
+            } else {
+                jets[i].hessian
+            }
+        })
+        .collect()
+}
+
 /// The data the energy is made of.
 struct Network<'a> {
     tri: &'a Triangulation,
     values: &'a [f64],
-    jets: &'a [LocalJet],
+    /// The Hessians of the targets ([`target_hessians`]).
+    hessians: &'a [Matrix2<f64>],
 }
 
 /// The two terms w (α_i (g_i · d) + α_j (g_j · d) − β)² of one edge seen from its end i.
@@ -117,7 +152,7 @@ impl Network<'_> {
         let d = self.tri.vertex(j) - self.tri.vertex(i);
         let length = d.norm();
         let df4 = 4.0 * (self.values[j] - self.values[i]);
-        let c = 0.5 * d.dot(&((self.jets[i].hessian + self.jets[j].hessian) * d));
+        let c = 0.5 * d.dot(&((self.hessians[i] + self.hessians[j]) * d));
         EdgeTerms {
             d,
             weight: 0.5 / (length * length * length),
@@ -425,24 +460,20 @@ mod tests {
                 vec![[0, 1, 2]],
             );
             let values: Vec<f64> = (0..3).map(|_| uniform(&mut r, -1.0, 1.0)).collect();
-            let jets: Vec<LocalJet> = (0..3)
-                .map(|_| LocalJet {
-                    gradient: Vector2::zeros(),
-                    hessian: {
-                        let (a, b, c) = (
-                            uniform(&mut r, -1.0, 1.0),
-                            uniform(&mut r, -1.0, 1.0),
-                            uniform(&mut r, -1.0, 1.0),
-                        );
-                        Matrix2::new(a, b, b, c)
-                    },
-                    fit: super::super::GradientFit::Linear,
+            let hessians: Vec<Matrix2<f64>> = (0..3)
+                .map(|_| {
+                    let (a, b, c) = (
+                        uniform(&mut r, -1.0, 1.0),
+                        uniform(&mut r, -1.0, 1.0),
+                        uniform(&mut r, -1.0, 1.0),
+                    );
+                    Matrix2::new(a, b, b, c)
                 })
                 .collect();
             let network = Network {
                 tri: &tri,
                 values: &values,
-                jets: &jets,
+                hessians: &hessians,
             };
             let (i, j) = (0, 2);
             let (gi, gj) = (random_dir(&mut r) * 3.0, random_dir(&mut r) * 3.0);
@@ -461,7 +492,7 @@ mod tests {
                 8.0 * (b[0] - 2.0 * b[1] + b2),
                 8.0 * (b2 - 2.0 * b[3] + b[4]),
             ];
-            let target = 0.5 * d.dot(&((jets[i].hessian + jets[j].hessian) * d));
+            let target = 0.5 * d.dot(&((hessians[i] + hessians[j]) * d));
             for (k, [a, bb, beta]) in edge.terms.iter().enumerate() {
                 let rho = a * di + bb * dj - beta;
                 let expected = second[k] - target;
@@ -492,12 +523,13 @@ mod tests {
                 .collect();
             let basis = PsBasis::optimal(tri.clone()).unwrap();
             let jets = estimate_jets(&tri, &values).unwrap();
+            let hessians = target_hessians(&tri, &jets);
             let local: Vec<Vector2<f64>> = jets.iter().map(|j| j.gradient).collect();
             let fixed = close_vertices(&basis);
             let network = Network {
                 tri: &tri,
                 values: &values,
-                jets: &jets,
+                hessians: &hessians,
             };
             let system = network.system(&fixed, &local);
             let g = system.solve(ANCHOR, &local).expect("converges");
