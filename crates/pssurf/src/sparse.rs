@@ -21,8 +21,10 @@ use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, SymbolicSp
 use faer::{Conj, Mat, Side};
 use thiserror::Error;
 
+mod block2;
 mod conjugate_gradient;
 mod symmetric_blocks;
+pub use block2::{Block2Matrix, Block2Stopping};
 pub use conjugate_gradient::{BlockJacobi, Iterated, Stopping, conjugate_gradient};
 pub use symmetric_blocks::SymmetricBlocks;
 

@@ -5,7 +5,8 @@ use std::sync::Arc;
 
 use nalgebra::{Point2, Vector2};
 
-use super::jumps::{GlobalGradientError, anchored_jump_gradients};
+use super::anchor::{GlobalGradientError, close_vertices};
+use super::jumps::anchored_jump_gradients;
 use super::local::{GradientError, GradientFit, estimate_jets};
 use super::merge::{NEAR_DUPLICATE, merge_near_duplicates};
 use super::network::network_gradients;
@@ -376,10 +377,7 @@ pub fn estimate_gradients_by(
             if eta > super::ANCHOR {
                 report.stronger_anchor = Some(eta);
             }
-            report.kept_local = super::jumps::close_vertices(basis)
-                .iter()
-                .filter(|&&c| c)
-                .count();
+            report.kept_local = close_vertices(basis).iter().filter(|&&c| c).count();
             g
         }
     };

@@ -1,6 +1,7 @@
 //! Scattered data on triangulations: the gradients that Hermite interpolation (2.30) needs
 //! when only values are known, interpolation, and smoothing fits.
 
+mod anchor;
 mod coarse;
 mod diagnostics;
 mod interpolate;
@@ -10,6 +11,7 @@ mod merge;
 mod network;
 mod smoothing;
 
+pub use anchor::{ANCHOR, CLOSE, GlobalGradientError, STRONGER_ANCHORS};
 pub use coarse::coarse_triangulation;
 pub use diagnostics::{NearDuplicate, near_duplicate_distance, near_duplicates, slivers};
 pub use interpolate::{
@@ -17,7 +19,7 @@ pub use interpolate::{
     check_points, data_basis, data_basis_with, estimate_gradients_by, hermite_data, hermite_spline,
     hermite_spline_with, interpolate, interpolate_with,
 };
-pub use jumps::{ANCHOR, CLOSE, GlobalGradientError, STRONGER_ANCHORS, estimate_gradients_jumps};
+pub use jumps::estimate_gradients_jumps;
 pub use local::{
     GradientError, GradientFit, HESSIAN_COLUMN_FLOOR, LocalJet, MAX_CONDITION,
     MAX_USABLE_CONDITION, estimate_gradients, estimate_jets,

@@ -27,17 +27,17 @@
 //! dependent on the thin triangles of a Delaunay triangulation, and the same system took 87
 //! steps.
 //!
-//! As for [`super::estimate_gradients_jumps`], vertices with a neighbour closer than
-//! [`CLOSE`](super::CLOSE) × the data's extent keep their local estimate, and a small anchor
-//! [`ANCHOR`] × (each vertex's stiffness) × ‖g_i − g_i^local‖² keeps the system definite
-//! (stronger ones, [`STRONGER_ANCHORS`], when the iteration does not converge with it).
+//! As for [`super::estimate_gradients_jumps`], vertices too close to others keep their local
+//! estimate, and an anchor to it keeps the system definite ([`super::anchor`]; the stronger
+//! anchors are tried when the iteration does not converge).
 
 use nalgebra::{Matrix2, Vector2};
 use rayon::prelude::*;
 
-use super::jumps::{ANCHOR, GlobalGradientError, STRONGER_ANCHORS, close_vertices};
+use super::anchor::{ANCHOR, GlobalGradientError, STRONGER_ANCHORS, close_vertices};
 use super::local::{LocalJet, estimate_jets};
 use crate::ps::PsBasis;
+use crate::sparse::{Block2Matrix, Block2Stopping};
 use crate::triangulation::Triangulation;
 
 /// The gradients minimising the network energy of these vertex values (module docs).
@@ -194,248 +194,79 @@ impl Network<'_> {
 
     /// The normal equations in the gradients, fixed vertices holding their `local` estimate.
     fn system(&self, fixed: &[bool], local: &[Vector2<f64>]) -> GradientSystem {
-        let n = self.tri.vertex_count();
-        const CHUNK: usize = 1024;
-        let rows: Vec<Rows> = (0..n.div_ceil(CHUNK))
-            .into_par_iter()
-            .map(|k| {
-                let mut rows = Rows::default();
-                let mut work = Vec::new();
-                for i in k * CHUNK..((k + 1) * CHUNK).min(n) {
-                    self.row(i, fixed, local, &mut work, &mut rows);
-                }
-                rows
-            })
-            .collect();
-        GradientSystem::concatenate(rows)
+        let (matrix, rows) = Block2Matrix::from_rows(self.tri.vertex_count(), |i, off| {
+            self.row(i, fixed, local, off)
+        });
+        let (rhs, stiffness) = rows.into_iter().unzip();
+        GradientSystem {
+            matrix,
+            rhs,
+            stiffness,
+        }
     }
 
-    /// Appends row i of the normal equations to `rows`.
+    /// Row i of the normal equations: its off-diagonal blocks pushed to `off`, its diagonal
+    /// block, right-hand side and stiffness (the anchor's scale; zero where the gradient is
+    /// fixed).
     fn row(
         &self,
         i: usize,
         fixed: &[bool],
         local: &[Vector2<f64>],
-        work: &mut Vec<u32>,
-        rows: &mut Rows,
-    ) {
-        let first = rows.cols.len();
+        off: &mut Vec<(u32, Matrix2<f64>)>,
+    ) -> (Matrix2<f64>, (Vector2<f64>, f64)) {
+        if fixed[i] {
+            return (Matrix2::identity(), (local[i], 0.0));
+        }
         let mut diagonal = Matrix2::zeros();
         let mut rhs = Vector2::zeros();
-        if fixed[i] {
-            diagonal = Matrix2::identity();
-            rhs = local[i];
-        } else {
-            self.for_neighbours(i, work, |j| {
-                let edge = self.edge(i, j);
-                let ddt = edge.d * edge.d.transpose();
-                let mut off = 0.0;
-                for [a, b, beta] in edge.terms {
-                    diagonal += edge.weight * a * a * ddt;
-                    off += edge.weight * a * b;
-                    rhs += edge.weight * a * beta * edge.d;
-                }
-                if fixed[j] {
-                    rhs -= off * ddt * local[j];
-                } else {
-                    rows.cols.push(j as u32);
-                    rows.blocks.push(off * ddt);
-                }
-            });
-        }
-        rows.lens.push(rows.cols.len() - first);
-        rows.diagonal.push(diagonal);
-        rows.rhs.push(rhs);
-        rows.stiffness.push(if fixed[i] {
-            0.0
-        } else {
-            0.5 * diagonal.trace()
+        let mut work = Vec::with_capacity(16);
+        self.for_neighbours(i, &mut work, |j| {
+            let edge = self.edge(i, j);
+            let ddt = edge.d * edge.d.transpose();
+            let mut coupling = 0.0;
+            for [a, b, beta] in edge.terms {
+                diagonal += edge.weight * a * a * ddt;
+                coupling += edge.weight * a * b;
+                rhs += edge.weight * a * beta * edge.d;
+            }
+            if fixed[j] {
+                rhs -= coupling * ddt * local[j];
+            } else {
+                off.push((j as u32, coupling * ddt));
+            }
         });
+        (diagonal, (rhs, 0.5 * diagonal.trace()))
     }
 }
 
-/// Rows of the normal equations for a range of vertices.
-#[derive(Default)]
-struct Rows {
-    /// Each row's off-diagonal columns and blocks, one row after the other.
-    cols: Vec<u32>,
-    blocks: Vec<Matrix2<f64>>,
-    lens: Vec<usize>,
-    diagonal: Vec<Matrix2<f64>>,
-    rhs: Vec<Vector2<f64>>,
-    stiffness: Vec<f64>,
-}
-
-/// The symmetric system A g = b in the gradients, 2 × 2 blocks in compressed rows (both
-/// triangles, the diagonal apart).
+/// The normal equations A g = b in the gradients, with each vertex's stiffness (the scale of
+/// its anchor; zero where the gradient is fixed).
 struct GradientSystem {
-    start: Vec<usize>,
-    cols: Vec<u32>,
-    blocks: Vec<Matrix2<f64>>,
-    diagonal: Vec<Matrix2<f64>>,
+    matrix: Block2Matrix,
     rhs: Vec<Vector2<f64>>,
-    /// The anchor's scale at each vertex (zero where the gradient is fixed).
     stiffness: Vec<f64>,
 }
 
-/// Rows per parallel task in the products.
-const ROWS_PER_TASK: usize = 2048;
-
-/// The relative residual ‖b − A g‖ / ‖b‖ at which the iteration stops (or at the rounding
-/// floor of the residual, when that is higher: [`GradientSystem::residual_floor`]).
-const RELATIVE_RESIDUAL: f64 = 1e-13;
-
-/// The most steps before the system counts as not solved with an anchor.
-const MAX_STEPS: usize = 1000;
+/// When the iteration stops: at a relative residual of 1e-13 (or the residual's rounding
+/// floor), or, not converged, after 1000 steps (the network energy needs 10–40).
+const STOP: Block2Stopping = Block2Stopping {
+    relative_residual: 1e-13,
+    max_steps: 1000,
+};
 
 impl GradientSystem {
-    fn concatenate(parts: Vec<Rows>) -> Self {
-        let mut system = GradientSystem {
-            start: vec![0],
-            cols: Vec::new(),
-            blocks: Vec::new(),
-            diagonal: Vec::new(),
-            rhs: Vec::new(),
-            stiffness: Vec::new(),
-        };
-        for part in parts {
-            for len in part.lens {
-                system.start.push(system.start.last().unwrap() + len);
-            }
-            system.cols.extend(part.cols);
-            system.blocks.extend(part.blocks);
-            system.diagonal.extend(part.diagonal);
-            system.rhs.extend(part.rhs);
-            system.stiffness.extend(part.stiffness);
-        }
-        system
-    }
-
-    /// y = (A + η S) x.
-    fn multiply(&self, eta: f64, x: &[Vector2<f64>], y: &mut [Vector2<f64>]) {
-        y.par_iter_mut()
-            .enumerate()
-            .with_min_len(ROWS_PER_TASK)
-            .for_each(|(i, yi)| {
-                let mut sum = self.diagonal[i] * x[i] + eta * self.stiffness[i] * x[i];
-                for k in self.start[i]..self.start[i + 1] {
-                    sum += self.blocks[k] * x[self.cols[k] as usize];
-                }
-                *yi = sum;
-            });
-    }
-
-    /// How accurately b − (A + η S) x can be computed at all: in row i, about ε × (the
-    /// row's terms + 3) × (|b_i| + Σ_j |A_ij| |x_j|) (the rounding of the sum of its
-    /// terms), as a 2-norm over the rows. A vertex of degree 20,000 (points on a circle and
-    /// their centre, random values) left the residual there above 1e-13 ‖b‖ for good.
-    fn residual_floor(&self, eta: f64, b: &[Vector2<f64>], x: &[Vector2<f64>]) -> f64 {
-        let squares: f64 = (0..b.len())
-            .into_par_iter()
-            .with_min_len(ROWS_PER_TASK)
-            .map(|i| {
-                let mut sum = b[i].abs()
-                    + self.diagonal[i].abs() * x[i].abs()
-                    + eta * self.stiffness[i] * x[i].abs();
-                for k in self.start[i]..self.start[i + 1] {
-                    sum += self.blocks[k].abs() * x[self.cols[k] as usize].abs();
-                }
-                let terms = (self.start[i + 1] - self.start[i] + 3) as f64;
-                (f64::EPSILON * terms * sum).norm_squared()
-            })
-            .sum();
-        squares.sqrt()
-    }
-
-    /// The anchored system's solution by conjugate gradients preconditioned with the
-    /// inverses of the diagonal blocks (Saad, *Iterative methods for sparse linear
-    /// systems*, Algorithm 9.1), from `local`; `None` when a diagonal block or a search
-    /// direction shows the system not positive definite, or it does not converge.
+    /// The solution with the anchor η: (A + η S) g = b + η S g^local, from the local
+    /// estimate; `None` when the iteration shows the system not positive definite or does
+    /// not converge.
     fn solve(&self, eta: f64, local: &[Vector2<f64>]) -> Option<Vec<Vector2<f64>>> {
-        let n = self.rhs.len();
-        let inverses: Option<Vec<Matrix2<f64>>> = (0..n)
-            .into_par_iter()
-            .with_min_len(ROWS_PER_TASK)
-            .map(|i| {
-                let d = self.diagonal[i] + Matrix2::identity() * (eta * self.stiffness[i]);
-                d.cholesky().map(|l| l.inverse())
-            })
+        let shift: Vec<f64> = self.stiffness.iter().map(|s| eta * s).collect();
+        let b: Vec<Vector2<f64>> = (0..self.rhs.len())
+            .map(|i| self.rhs[i] + shift[i] * local[i])
             .collect();
-        let inverses = inverses?;
-        let b: Vec<Vector2<f64>> = (0..n)
-            .map(|i| self.rhs[i] + eta * self.stiffness[i] * local[i])
-            .collect();
-        let norm_b = dot(&b, &b).sqrt();
-        let mut x = local.to_vec();
-        let mut target = (RELATIVE_RESIDUAL * norm_b).max(self.residual_floor(eta, &b, &x));
-        let mut q = vec![Vector2::zeros(); n];
-        let residual = |x: &[Vector2<f64>], q: &mut [Vector2<f64>]| -> Vec<Vector2<f64>> {
-            self.multiply(eta, x, q);
-            b.par_iter().zip(q.par_iter()).map(|(b, q)| b - q).collect()
-        };
-        let mut r = residual(&x, &mut q);
-        if !dot(&r, &r).is_finite() {
-            return None;
-        }
-        if dot(&r, &r).sqrt() <= target {
-            return Some(x);
-        }
-        let precondition = |r: &[Vector2<f64>]| -> Vec<Vector2<f64>> {
-            r.par_iter()
-                .zip(inverses.par_iter())
-                .with_min_len(ROWS_PER_TASK)
-                .map(|(r, m)| m * r)
-                .collect()
-        };
-        let mut z = precondition(&r);
-        let mut p = z.clone();
-        let mut rz = dot(&r, &z);
-        for _ in 0..MAX_STEPS {
-            self.multiply(eta, &p, &mut q);
-            let pq = dot(&p, &q);
-            if !(pq > 0.0) {
-                return None;
-            }
-            let alpha = rz / pq;
-            axpy(&mut x, alpha, &p);
-            axpy(&mut r, -alpha, &q);
-            if dot(&r, &r).sqrt() <= target {
-                // The recurrence may drift from the true residual: check, and go on from
-                // the true one if it is not yet small enough.
-                r = residual(&x, &mut q);
-                target = (RELATIVE_RESIDUAL * norm_b).max(self.residual_floor(eta, &b, &x));
-                if dot(&r, &r).sqrt() <= target {
-                    return Some(x);
-                }
-            }
-            z = precondition(&r);
-            let rz_next = dot(&r, &z);
-            let beta = rz_next / rz;
-            rz = rz_next;
-            p.par_iter_mut()
-                .zip(z.par_iter())
-                .with_min_len(ROWS_PER_TASK)
-                .for_each(|(p, z)| *p = z + beta * *p);
-        }
-        None
+        self.matrix
+            .conjugate_gradient(&shift, &b, local.to_vec(), &STOP)
     }
-}
-
-/// Σ aᵢ · bᵢ.
-fn dot(a: &[Vector2<f64>], b: &[Vector2<f64>]) -> f64 {
-    a.par_iter()
-        .zip(b.par_iter())
-        .with_min_len(ROWS_PER_TASK)
-        .map(|(a, b)| a.dot(b))
-        .sum()
-}
-
-/// y += α x.
-fn axpy(y: &mut [Vector2<f64>], alpha: f64, x: &[Vector2<f64>]) {
-    y.par_iter_mut()
-        .zip(x.par_iter())
-        .with_min_len(ROWS_PER_TASK)
-        .for_each(|(y, x)| *y += alpha * x);
 }
 
 #[cfg(test)]
